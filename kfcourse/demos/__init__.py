@@ -1,0 +1,10 @@
+"""Interactive demos, one module each; every demo is a function returning an
+ipywidgets widget: ``kf.demos.hallway(seed=0)``."""
+
+from .covariance import covariance_ellipse
+from .hallway import hallway
+from .raw_vs_filtered import raw_vs_filtered
+from .step_through import step_through
+from .trust import trust_slider
+
+__all__ = ["covariance_ellipse", "hallway", "raw_vs_filtered", "step_through", "trust_slider"]

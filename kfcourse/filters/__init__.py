@@ -1,0 +1,37 @@
+"""The math of the course: arrays in, arrays out; no plots, no widgets."""
+
+from .association import associate, mahalanobis
+from .bayes import bayes_predict, bayes_update
+from .ekf import ekf_predict, ekf_update
+from .gaussian import add_gaussians, affine_gaussian, ellipse_axes, fuse, gaussian_pdf, mass_inside, mvn_pdf
+from .kalman import KF1DCycle, kf_1d_cycle, kf_1d_step, kf_gain, kf_predict, kf_step, kf_update, steady_state_1d
+from .ukf import sigma_points, ukf_predict, ukf_update, unscented_1d, unscented_transform
+
+__all__ = [
+    "KF1DCycle",
+    "add_gaussians",
+    "affine_gaussian",
+    "associate",
+    "bayes_predict",
+    "bayes_update",
+    "ekf_predict",
+    "ekf_update",
+    "ellipse_axes",
+    "fuse",
+    "gaussian_pdf",
+    "kf_1d_cycle",
+    "kf_1d_step",
+    "kf_gain",
+    "kf_predict",
+    "kf_step",
+    "kf_update",
+    "mahalanobis",
+    "mass_inside",
+    "mvn_pdf",
+    "sigma_points",
+    "steady_state_1d",
+    "ukf_predict",
+    "ukf_update",
+    "unscented_1d",
+    "unscented_transform",
+]

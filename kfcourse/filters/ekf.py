@@ -1,0 +1,95 @@
+"""The extended Kalman filter.
+
+Introduced in chapter 7: means go through the nonlinear models ``g`` and ``h``,
+covariances through their Jacobians ``G`` and ``H``.
+"""
+
+from __future__ import annotations
+
+from collections.abc import Callable
+
+import numpy as np
+
+from .. import _validate as v
+from .kalman import _correct, _gain
+
+
+def ekf_predict(mu, Sig, u, g: Callable, G: Callable, R) -> tuple[np.ndarray, np.ndarray]:
+    r"""EKF predict step.
+
+    .. math:: \bar\mu = g(\mu, u), \qquad \bar\Sigma = G\Sigma G^\top + R,
+              \qquad G = \left.\partial g/\partial x\right|_{\mu}
+
+    Introduced in chapter 7.
+
+    Parameters
+    ----------
+    mu : array_like, shape (n,)
+    Sig : array_like, shape (n, n)
+    u : array_like
+        Control, passed to ``g`` and ``G`` unchanged.
+    g : callable ``g(x, u) -> array (n,)``
+        Motion model.
+    G : callable ``G(x, u) -> array (n, n)``
+        Its Jacobian with respect to ``x``.
+    R : array_like, shape (n, n)
+        Process-noise covariance.
+
+    Returns
+    -------
+    (mu_bar, Sig_bar) : shapes (n,), (n, n)
+    """
+    mu = v.vector(mu, "mu")
+    n = mu.size
+    Sig = v.covariance(Sig, "Sig", n)
+    R = v.covariance(R, "R", n)
+    g, G = v.function(g, "g"), v.function(G, "G")
+    mu_bar = v.output(g(mu, u), "g", n)  # mu_bar = g(mu, u): the mean rides the real curve
+    Gt = v.output_matrix(G(mu, u), "G", n, n)  # G at the previous mean
+    Sig_bar = Gt @ Sig @ Gt.T + R  # Sig_bar = G Sig G^T + R: the covariance rides the tangent
+    return mu_bar, 0.5 * (Sig_bar + Sig_bar.T)
+
+
+def ekf_update(
+    mu_bar, Sig_bar, z, h: Callable, H: Callable, Q, residual: Callable | None = None
+) -> tuple[np.ndarray, np.ndarray]:
+    r"""EKF update step.
+
+    .. math::
+        K = \bar\Sigma H^\top (H\bar\Sigma H^\top + Q)^{-1},\quad
+        \mu = \bar\mu + K\,(z - h(\bar\mu)),\quad
+        \Sigma = (I - KH)\bar\Sigma,\qquad H = \left.\partial h/\partial x\right|_{\bar\mu}
+
+    The covariance is computed in Joseph form.  Introduced in chapter 7.
+
+    Parameters
+    ----------
+    mu_bar : array_like, shape (n,)
+    Sig_bar : array_like, shape (n, n)
+    z : array_like, shape (k,)
+    h : callable ``h(x) -> array (k,)``
+        Measurement model (bind a landmark with ``functools.partial`` or a lambda).
+    H : callable ``H(x) -> array (k, n)``
+        Its Jacobian.
+    Q : array_like, shape (k, k)
+        Measurement-noise covariance.
+    residual : callable ``residual(a, b) -> a - b``, optional
+        Innovation; pass :func:`kfcourse.models.range_bearing_residual` so that a
+        bearing innovation is wrapped to (-pi, pi].
+
+    Returns
+    -------
+    (mu, Sig) : shapes (n,), (n, n)
+    """
+    mu_bar = v.vector(mu_bar, "mu_bar")
+    n = mu_bar.size
+    Sig_bar = v.covariance(Sig_bar, "Sig_bar", n)
+    z = v.vector(z, "z")
+    k = z.size
+    Q = v.covariance(Q, "Q", k)
+    h, H = v.function(h, "h"), v.function(H, "H")
+    z_hat = v.output(h(mu_bar), "h", k)  # predicted measurement h(mu_bar)
+    Ht = v.output_matrix(H(mu_bar), "H", k, n)  # H at the predicted mean
+    y = z - z_hat if residual is None else v.output(residual(z, z_hat), "residual", k)  # innovation
+    _, K = _gain(Sig_bar, Ht, Q)
+    return _correct(mu_bar, Sig_bar, y, Ht, Q, K)

@@ -1,0 +1,312 @@
+"""The Kalman filter: scalar (chapter 3-4) and matrix (chapter 5) forms.
+
+Noise letters follow the course: ``R`` is the process (motion) noise covariance,
+``Q`` the measurement (sensor) noise covariance.
+"""
+
+from __future__ import annotations
+
+import math
+from typing import NamedTuple
+
+import numpy as np
+
+from .. import _validate as v
+from .gaussian import fuse
+
+__all__ = [
+    "KF1DCycle",
+    "fuse",
+    "kf_1d_cycle",
+    "kf_1d_step",
+    "kf_gain",
+    "kf_predict",
+    "kf_step",
+    "kf_update",
+    "steady_state_1d",
+]
+
+
+class KF1DCycle(NamedTuple):
+    """Every intermediate quantity of one scalar predict/update cycle."""
+
+    mu_bar: float  #: predicted mean
+    var_bar: float  #: predicted variance
+    innovation: float  #: z - c mu_bar
+    K: float  #: Kalman gain
+    mu: float  #: updated mean
+    var: float  #: updated variance
+
+
+def kf_1d_cycle(mu, var, u, z, a=1.0, b=1.0, c=1.0, R=0.2, Q=0.1) -> KF1DCycle:
+    r"""One scalar Kalman cycle, returning every intermediate quantity.
+
+    .. math::
+        \bar\mu = a\mu + bu,\quad \bar\sigma^2 = a^2\sigma^2 + \sigma_R^2,\quad
+        K = \frac{c\,\bar\sigma^2}{c^2\bar\sigma^2 + \sigma_Q^2},\quad
+        \mu' = \bar\mu + K(z - c\bar\mu),\quad \sigma'^2 = (1 - Kc)\,\bar\sigma^2
+
+    Introduced in chapter 3.
+
+    Parameters
+    ----------
+    mu, var : float
+        Prior mean and variance (``var >= 0``).
+    u : float
+        Control (commanded move).
+    z : float or None
+        Measurement; ``None`` skips the update (a predict-only tick, ``K = 0``).
+    a, b, c : float
+        Motion, control and measurement coefficients.
+    R : float
+        Process (motion) noise variance, ``>= 0``.
+    Q : float
+        Measurement noise variance, ``>= 0``.
+
+    Returns
+    -------
+    KF1DCycle
+    """
+    mu = v.scalar(mu, "mu")
+    var = v.variance(var, "var")
+    u = v.scalar(u, "u")
+    a, b, c = v.scalar(a, "a"), v.scalar(b, "b"), v.scalar(c, "c")
+    R = v.variance(R, "R")
+    Q = v.variance(Q, "Q")
+    mu_bar = a * mu + b * u  # predict mean: mu_bar = a mu + b u
+    var_bar = a * a * var + R  # predict variance: var_bar = a^2 var + R
+    if z is None:
+        return KF1DCycle(mu_bar, var_bar, 0.0, 0.0, mu_bar, var_bar)
+    z = v.scalar(z, "z")
+    denom = c * c * var_bar + Q
+    if denom <= 0:
+        raise ValueError("Q must be > 0 when the predicted variance c^2 var_bar is 0")
+    K = c * var_bar / denom  # gain: K = c var_bar / (c^2 var_bar + Q)
+    innovation = z - c * mu_bar  # innovation: the surprise z - c mu_bar
+    mu_new = mu_bar + K * innovation  # update mean
+    var_new = (1.0 - K * c) * var_bar  # update variance
+    return KF1DCycle(mu_bar, var_bar, innovation, K, mu_new, max(var_new, 0.0))
+
+
+def kf_1d_step(mu, var, u, z, a=1.0, b=1.0, c=1.0, R=0.2, Q=0.1) -> tuple[float, float]:
+    """One scalar Kalman predict/update cycle, as in the lesson.
+
+    Introduced in chapter 3.  See :func:`kf_1d_cycle` for the equations and the
+    parameters; this returns only the posterior.
+
+    Returns
+    -------
+    (mu, var) : floats
+    """
+    cyc = kf_1d_cycle(mu, var, u, z, a, b, c, R, Q)
+    return cyc.mu, cyc.var
+
+
+def steady_state_1d(R, Q, a=1.0, c=1.0) -> tuple[float, float, float]:
+    r"""Steady-state gain and variances of the scalar filter (scalar Riccati equation).
+
+    At the fixed point the prior variance :math:`P` satisfies
+
+    .. math:: P = a^2\,\frac{P\,Q}{c^2 P + Q} + R
+        \;\Longleftrightarrow\;
+        c^2 P^2 + \left(Q(1 - a^2) - R c^2\right) P - R Q = 0,
+
+    whose non-negative root is taken; then :math:`K = cP/(c^2P+Q)` and the
+    posterior variance is :math:`(1 - Kc)P`.  Introduced in chapter 4.
+
+    Parameters
+    ----------
+    R : float
+        Process noise variance, >= 0.
+    Q : float
+        Measurement noise variance, >= 0 (not both zero).
+    a, c : float
+        Motion and measurement coefficients.
+
+    Returns
+    -------
+    (K, var_prior, var_post) : floats
+    """
+    R = v.variance(R, "R")
+    Q = v.variance(Q, "Q")
+    a, c = v.scalar(a, "a"), v.scalar(c, "c")
+    if R == 0 and Q == 0:
+        raise ValueError("R and Q must not both be 0 (the gain is undefined)")
+    if c == 0:
+        if abs(a) >= 1:
+            raise ValueError("c must be non-zero unless |a| < 1: with no measurement the variance grows forever")
+        P = R / (1.0 - a * a)
+        return 0.0, P, P
+    beta = Q * (1.0 - a * a) - R * c * c  # linear coefficient of the quadratic
+    root = math.sqrt(beta * beta + 4.0 * c * c * R * Q)
+    P = (root - beta) / (2 * c * c) if beta <= 0 else 2 * R * Q / (root + beta)  # stable root
+    K = c * P / (c * c * P + Q)  # steady-state gain
+    return K, P, (1.0 - K * c) * P
+
+
+# ---------------------------------------------------------------- matrix form
+def _check_step_inputs(mu, Sig, u, F, B, R):
+    mu = v.vector(mu, "mu")
+    n = mu.size
+    Sig = v.covariance(Sig, "Sig", n)
+    F = v.matrix(F, "F", n, n)
+    R = v.covariance(R, "R", n, constant=True)
+    if B is None and u is None:
+        return mu, Sig, None, F, None, R
+    if B is None or u is None:
+        raise ValueError("u and B must be given together (or both None for no control)")
+    u = v.vector(u, "u")
+    B = v.matrix(B, "B", n, u.size)
+    return mu, Sig, u, F, B, R
+
+
+def _check_update_inputs(mu_bar, Sig_bar, z, H, Q):
+    mu_bar = v.vector(mu_bar, "mu_bar")
+    n = mu_bar.size
+    Sig_bar = v.covariance(Sig_bar, "Sig_bar", n)
+    z = v.vector(z, "z")
+    H = v.matrix(H, "H", z.size, n)
+    Q = v.covariance(Q, "Q", z.size, constant=True)
+    return mu_bar, Sig_bar, z, H, Q
+
+
+# The private helpers take checked float arrays; ``.dot`` costs less than ``@`` on small ones.
+def _predict(mu, Sig, u, F, B, R):
+    mu_bar = F.dot(mu)  # mu_bar = F mu + B u
+    if B is not None:
+        mu_bar = mu_bar + B.dot(u)
+    Sig_bar = F.dot(Sig).dot(F.T) + R  # Sig_bar = F Sig F^T + R
+    return mu_bar, 0.5 * (Sig_bar + Sig_bar.T)
+
+
+def _gain(Sig_bar, H, Q):
+    PHt = Sig_bar.dot(H.T)
+    S = H.dot(PHt) + Q  # innovation covariance S = H Sig_bar H^T + Q
+    try:
+        K = np.linalg.solve(S, PHt.T).T  # K = Sig_bar H^T S^-1  (S symmetric)
+    except np.linalg.LinAlgError:
+        raise ValueError("Q: the innovation covariance S = H Sig_bar H^T + Q is singular") from None
+    return S, K
+
+
+_IDENTITY: dict[int, np.ndarray] = {}  # read-only identity matrices by size
+
+
+def _identity(n):
+    eye = _IDENTITY.get(n)
+    if eye is None:
+        eye = np.eye(n)
+        eye.setflags(write=False)
+        _IDENTITY[n] = eye
+    return eye
+
+
+def _correct(mu_bar, Sig_bar, y, H, Q, K):
+    mu = mu_bar + K.dot(y)  # mu = mu_bar + K y
+    I_KH = _identity(mu_bar.size) - K.dot(H)
+    Sig = I_KH.dot(Sig_bar).dot(I_KH.T) + K.dot(Q).dot(K.T)  # Joseph form of (I - K H) Sig_bar
+    return mu, 0.5 * (Sig + Sig.T)
+
+
+def _update(mu_bar, Sig_bar, z, H, Q):
+    _, K = _gain(Sig_bar, H, Q)
+    y = z - H.dot(mu_bar)  # innovation y = z - H mu_bar
+    return _correct(mu_bar, Sig_bar, y, H, Q, K)
+
+
+def kf_predict(mu, Sig, u, F, B, R) -> tuple[np.ndarray, np.ndarray]:
+    r"""Kalman predict step.
+
+    .. math:: \bar\mu = F\mu + Bu, \qquad \bar\Sigma = F\Sigma F^\top + R
+
+    Introduced in chapter 5.
+
+    Parameters
+    ----------
+    mu : array_like, shape (n,)
+    Sig : array_like, shape (n, n)
+    u : array_like, shape (m,), or None for no control
+    F : array_like, shape (n, n)
+        State-transition matrix.
+    B : array_like, shape (n, m), or None for no control
+        Control matrix.
+    R : array_like, shape (n, n)
+        Process-noise covariance.
+
+    Returns
+    -------
+    (mu_bar, Sig_bar) : shapes (n,), (n, n)
+    """
+    return _predict(*_check_step_inputs(mu, Sig, u, F, B, R))
+
+
+def kf_gain(Sig_bar, H, Q) -> tuple[np.ndarray, np.ndarray]:
+    r"""Innovation covariance and Kalman gain.
+
+    .. math:: S = H\bar\Sigma H^\top + Q, \qquad K = \bar\Sigma H^\top S^{-1}
+
+    Introduced in chapter 5.
+
+    Parameters
+    ----------
+    Sig_bar : array_like, shape (n, n)
+    H : array_like, shape (k, n)
+    Q : array_like, shape (k, k)
+
+    Returns
+    -------
+    (S, K) : shapes (k, k), (n, k)
+    """
+    Sig_bar = v.covariance(Sig_bar, "Sig_bar")
+    H = v.matrix(H, "H", None, Sig_bar.shape[0])
+    Q = v.covariance(Q, "Q", H.shape[0], constant=True)
+    return _gain(Sig_bar, H, Q)
+
+
+def kf_update(mu_bar, Sig_bar, z, H, Q) -> tuple[np.ndarray, np.ndarray]:
+    r"""Kalman update (correction) step.
+
+    .. math::
+        K = \bar\Sigma H^\top (H\bar\Sigma H^\top + Q)^{-1},\quad
+        \mu = \bar\mu + K(z - H\bar\mu),\quad
+        \Sigma = (I - KH)\bar\Sigma
+
+    The covariance is computed in the equivalent Joseph form
+    :math:`(I-KH)\bar\Sigma(I-KH)^\top + KQK^\top`, which stays symmetric positive
+    semi-definite under rounding.  Introduced in chapter 5.
+
+    Parameters
+    ----------
+    mu_bar : array_like, shape (n,)
+    Sig_bar : array_like, shape (n, n)
+    z : array_like, shape (k,)
+    H : array_like, shape (k, n)
+        Measurement matrix.
+    Q : array_like, shape (k, k)
+        Measurement-noise covariance.
+
+    Returns
+    -------
+    (mu, Sig) : shapes (n,), (n, n)
+    """
+    return _update(*_check_update_inputs(mu_bar, Sig_bar, z, H, Q))
+
+
+def kf_step(mu, Sig, u, z, F, B, H, R, Q) -> tuple[np.ndarray, np.ndarray]:
+    """One full Kalman cycle: :func:`kf_predict` then :func:`kf_update`.
+
+    Introduced in chapter 5.  Shapes as in those two functions; ``z=None`` skips
+    the update.
+
+    Returns
+    -------
+    (mu, Sig) : shapes (n,), (n, n)
+    """
+    mu, Sig, u, F, B, R = _check_step_inputs(mu, Sig, u, F, B, R)
+    mu_bar, Sig_bar = _predict(mu, Sig, u, F, B, R)
+    if z is None:
+        return mu_bar, Sig_bar
+    z = v.vector(z, "z")
+    H = v.matrix(H, "H", z.size, mu.size)
+    Q = v.covariance(Q, "Q", z.size, constant=True)
+    return _update(mu_bar, Sig_bar, z, H, Q)

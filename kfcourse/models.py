@@ -1,0 +1,300 @@
+"""Motion and measurement models with their Jacobians.
+
+A pose is ``[x, y, theta]`` (m, m, rad); a control is ``[V, omega]`` (m/s, rad/s);
+a landmark is ``[mx, my]`` (m); a range-bearing reading is ``[r, phi]`` (m, rad).
+"""
+
+from __future__ import annotations
+
+import math
+from collections.abc import Callable
+
+import numpy as np
+
+from . import _validate as v
+
+__all__ = [
+    "constant_velocity",
+    "numeric_jacobian",
+    "pose_mean",
+    "pose_residual",
+    "range_bearing",
+    "range_bearing_jacobian",
+    "range_bearing_mean",
+    "range_bearing_residual",
+    "unicycle",
+    "unicycle_jacobian",
+    "wrap_angle",
+]
+
+
+def wrap_angle(a):
+    r"""Wrap an angle (or array of angles) into :math:`(-\pi, \pi]`.
+
+    Introduced in chapter 8 (bearing innovations must be wrapped).
+
+    Parameters
+    ----------
+    a : float or array_like
+        Angles in radians.
+
+    Returns
+    -------
+    float or ndarray, same shape
+    """
+    a = v.finite(a, "a")
+    # a - 2 pi k with k chosen for (-pi, pi]; angles already in range are returned unchanged.
+    # np.mod keeps huge angles in range (a - 2 pi ceil(...) did not beyond ~1e16), and it
+    # can round up to exactly 2 pi, which would give -pi: that end maps to pi.
+    out = np.where((a > -np.pi) & (a <= np.pi), a, np.pi - np.mod(np.pi - a, 2.0 * np.pi))
+    out = np.where(out <= -np.pi, np.pi, out)
+    return float(out) if out.ndim == 0 else out
+
+
+def numeric_jacobian(f: Callable, x, eps: float = 1e-6, residual: Callable | None = None) -> np.ndarray:
+    r"""Jacobian of ``f`` at ``x`` by central differences.
+
+    .. math:: J_{:,i} \approx \frac{f(x + \varepsilon e_i) - f(x - \varepsilon e_i)}{2\varepsilon}
+
+    Introduced in chapter 7, to check a hand-derived Jacobian.
+
+    Parameters
+    ----------
+    f : callable ``f(x) -> array (k,)``
+    x : array_like, shape (n,)
+    eps : float
+        Step, > 0.
+    residual : callable ``residual(a, b) -> a - b``, optional
+        Difference of two outputs; pass one that wraps angles when an output is an
+        angle (e.g. :func:`range_bearing_residual`).
+
+    Returns
+    -------
+    ndarray, shape (k, n)
+    """
+    f = v.function(f, "f")
+    x = v.vector(x, "x")
+    eps = v.variance(eps, "eps", positive=True)
+    diff = residual if residual is not None else np.subtract
+    cols = []
+    for i in range(x.size):
+        step = np.zeros_like(x)
+        step[i] = eps
+        hi = v.vector(f(x + step), "the result of f")
+        lo = v.vector(f(x - step), "the result of f", hi.size)
+        cols.append(np.asarray(diff(hi, lo), dtype=float) / (2.0 * eps))
+    return np.column_stack(cols)
+
+
+def constant_velocity(dt: float, dim: int = 1) -> tuple[np.ndarray, np.ndarray]:
+    r"""Constant-velocity model matrices for ``dim`` axes.
+
+    The state is ``[p_1..p_dim, v_1..v_dim]``; each position advances by its
+    velocity times ``dt`` and the sensor sees positions only:
+
+    .. math:: F = \begin{bmatrix} I & \Delta t\, I \\ 0 & I \end{bmatrix}, \qquad
+              H = \begin{bmatrix} I & 0 \end{bmatrix}
+
+    Introduced in chapter 5 (``dim=1``) and chapter 6 (``dim=2``).
+
+    Parameters
+    ----------
+    dt : float
+        Time step in s, > 0.
+    dim : int
+        Number of spatial axes (>= 1).
+
+    Returns
+    -------
+    (F, H) : shapes (2 dim, 2 dim), (dim, 2 dim)
+    """
+    dt = v.variance(dt, "dt", positive=True)
+    if isinstance(dim, bool) or not isinstance(dim, (int, np.integer)) or dim < 1:
+        raise ValueError(f"dim must be a whole number >= 1, got {dim!r}")
+    eye = np.eye(dim)
+    F = np.block([[eye, dt * eye], [np.zeros((dim, dim)), eye]])
+    H = np.hstack([eye, np.zeros((dim, dim))])
+    return F, H
+
+
+def _pose_control(state, u, dt):
+    s = v.vector(state, "state", 3)
+    c = v.vector(u, "u", 2)
+    return s, c, v.variance(dt, "dt", positive=True)
+
+
+def unicycle(state, u, dt) -> np.ndarray:
+    r"""Unicycle (differential-drive) motion over ``dt`` with a zero-order hold.
+
+    .. math::
+        x' = x + \tfrac{V}{\omega}\left(\sin(\theta + \omega\Delta t) - \sin\theta\right),\;
+        y' = y + \tfrac{V}{\omega}\left(\cos\theta - \cos(\theta + \omega\Delta t)\right),\;
+        \theta' = \theta + \omega\Delta t
+
+    Written in the equivalent form
+    :math:`x' = x + V\Delta t\,\cos(\theta + \omega\Delta t/2)\,\mathrm{sinc}(\omega\Delta t/2)`
+    (and the same with sin for y), which never divides by ω and equals the
+    straight-line limit :math:`x' = x + V\Delta t\cos\theta` exactly at ω = 0.
+    Introduced in chapter 8.
+
+    Parameters
+    ----------
+    state : array_like, shape (3,)
+        Pose ``[x, y, theta]``.
+    u : array_like, shape (2,)
+        Control ``[V, omega]``.
+    dt : float
+        Time step in s, > 0.
+
+    Returns
+    -------
+    ndarray, shape (3,)
+        Next pose, heading wrapped to (-pi, pi].
+    """
+    (x, y, th), (V, w), dt = _pose_control(state, u, dt)
+    half = 0.5 * w * dt
+    d = V * dt * np.sinc(half / np.pi)  # chord length: V dt sin(half)/half
+    return np.array([x + d * math.cos(th + half), y + d * math.sin(th + half), wrap_angle(th + w * dt)])
+
+
+def unicycle_jacobian(state, u, dt) -> np.ndarray:
+    r"""Jacobian :math:`G = \partial g / \partial (x, y, \theta)` of :func:`unicycle`.
+
+    .. math:: G = \begin{bmatrix} 1 & 0 & -d\sin(\theta + \omega\Delta t/2) \\
+                                  0 & 1 & \phantom{-}d\cos(\theta + \omega\Delta t/2) \\
+                                  0 & 0 & 1 \end{bmatrix},
+              \qquad d = V\Delta t\,\mathrm{sinc}(\omega\Delta t/2)
+
+    At ω = 0 this is the lesson's :math:`-V\Delta t\sin\theta`,
+    :math:`V\Delta t\cos\theta`.  Introduced in chapter 8.
+
+    Parameters
+    ----------
+    state : array_like, shape (3,)
+    u : array_like, shape (2,)
+    dt : float
+
+    Returns
+    -------
+    ndarray, shape (3, 3)
+    """
+    (_, _, th), (V, w), dt = _pose_control(state, u, dt)
+    half = 0.5 * w * dt
+    d = V * dt * np.sinc(half / np.pi)
+    return np.array([[1.0, 0.0, -d * math.sin(th + half)], [0.0, 1.0, d * math.cos(th + half)], [0.0, 0.0, 1.0]])
+
+
+def _offset(state, landmark):
+    s = v.vector(state, "state", 3)
+    m = v.vector(landmark, "landmark", 2)
+    dx, dy = m[0] - s[0], m[1] - s[1]
+    q = dx * dx + dy * dy  # squared distance
+    if q == 0.0:
+        raise ValueError("landmark must not sit exactly at the robot's position (bearing undefined)")
+    return dx, dy, q, s[2]
+
+
+def range_bearing(state, landmark) -> np.ndarray:
+    r"""Range and bearing from a pose to a landmark.
+
+    .. math:: h = \begin{bmatrix} \sqrt{(m_x - x)^2 + (m_y - y)^2} \\
+                  \operatorname{atan2}(m_y - y,\, m_x - x) - \theta \end{bmatrix}
+
+    Introduced in chapter 7.
+
+    Parameters
+    ----------
+    state : array_like, shape (3,)
+        Pose ``[x, y, theta]``.
+    landmark : array_like, shape (2,)
+        Landmark ``[mx, my]``.
+
+    Returns
+    -------
+    ndarray, shape (2,)
+        ``[r, phi]``, bearing wrapped to (-pi, pi].
+    """
+    dx, dy, q, th = _offset(state, landmark)
+    return np.array([math.sqrt(q), wrap_angle(math.atan2(dy, dx) - th)])
+
+
+def range_bearing_jacobian(state, landmark) -> np.ndarray:
+    r"""Jacobian :math:`H = \partial h / \partial (x, y, \theta)` of :func:`range_bearing`.
+
+    With :math:`\Delta x = m_x - x`, :math:`\Delta y = m_y - y`, :math:`q = \Delta x^2 + \Delta y^2`:
+
+    .. math:: H = \begin{bmatrix} -\Delta x/\sqrt q & -\Delta y/\sqrt q & 0 \\
+                                  \Delta y/q & -\Delta x/q & -1 \end{bmatrix}
+
+    Introduced in chapter 7.
+
+    Returns
+    -------
+    ndarray, shape (2, 3)
+    """
+    dx, dy, q, _ = _offset(state, landmark)
+    r = math.sqrt(q)
+    return np.array([[-dx / r, -dy / r, 0.0], [dy / q, -dx / q, -1.0]])
+
+
+def _angle_residual(a, b, index: int, n: int, name: str) -> np.ndarray:
+    d = v.vector(a, f"{name} a", n) - v.vector(b, f"{name} b", n)
+    d[index] = wrap_angle(d[index])
+    return d
+
+
+def pose_residual(a, b) -> np.ndarray:
+    """``a - b`` for poses ``[x, y, theta]``, the heading difference wrapped.
+
+    Introduced in chapter 9 (the UKF needs it to average headings).
+
+    Returns
+    -------
+    ndarray, shape (3,)
+    """
+    return _angle_residual(a, b, 2, 3, "pose_residual")
+
+
+def range_bearing_residual(a, b) -> np.ndarray:
+    """``a - b`` for readings ``[r, phi]``, the bearing difference wrapped.
+
+    Introduced in chapter 8: pass it as ``residual`` to the EKF/UKF update.
+
+    Returns
+    -------
+    ndarray, shape (2,)
+    """
+    return _angle_residual(a, b, 1, 2, "range_bearing_residual")
+
+
+def _mean_with_angle(points, weights, index: int) -> np.ndarray:
+    pts = v.matrix(points, "points")
+    w = v.vector(weights, "weights", pts.shape[0])
+    mean = w @ pts
+    ang = pts[:, index]
+    mean[index] = math.atan2(w @ np.sin(ang), w @ np.cos(ang))  # circular mean
+    return mean
+
+
+def pose_mean(points, weights) -> np.ndarray:
+    """Weighted mean of poses, rows ``[x, y, theta]``, headings averaged on the circle.
+
+    Introduced in chapter 9 (``mean`` hook of the UKF).
+
+    Returns
+    -------
+    ndarray, shape (3,)
+    """
+    return _mean_with_angle(points, weights, 2)
+
+
+def range_bearing_mean(points, weights) -> np.ndarray:
+    """Weighted mean of readings, rows ``[r, phi]``, bearings averaged on the circle.
+
+    Introduced in chapter 9 (``mean`` hook of the UKF).
+
+    Returns
+    -------
+    ndarray, shape (2,)
+    """
+    return _mean_with_angle(points, weights, 1)

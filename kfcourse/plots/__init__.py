@@ -1,0 +1,37 @@
+"""Figures for the course: palette, style and artists.
+
+Artists take an ``ax`` and return the artists they made; ``update_*`` functions
+move existing artists in place.  Nothing here calls ``plt.show()`` or knows
+about widgets.
+"""
+
+from . import palette
+from .artists import (
+    belief_bars,
+    covariance_ellipse,
+    gain_gauge,
+    gaussian_curve,
+    update_belief_bars,
+    update_covariance_ellipse,
+    update_gain_gauge,
+    update_gaussian_curve,
+)
+from .charts import convergence_chart, drift_chart, samples_chart
+from .style import FigureRenderer, new_figure
+
+__all__ = [
+    "FigureRenderer",
+    "belief_bars",
+    "convergence_chart",
+    "covariance_ellipse",
+    "drift_chart",
+    "gain_gauge",
+    "gaussian_curve",
+    "new_figure",
+    "palette",
+    "samples_chart",
+    "update_belief_bars",
+    "update_covariance_ellipse",
+    "update_gain_gauge",
+    "update_gaussian_curve",
+]

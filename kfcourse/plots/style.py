@@ -1,0 +1,98 @@
+"""Figure creation and fast rendering to PNG.
+
+Figures are plain :class:`matplotlib.figure.Figure` objects on an Agg canvas, not
+pyplot figures: nothing is registered globally, nothing is shown by itself, and
+the notebook's matplotlib backend does not matter.
+"""
+
+from __future__ import annotations
+
+import io
+
+import numpy as np
+from matplotlib.artist import Artist
+from matplotlib.backends.backend_agg import FigureCanvasAgg
+from matplotlib.figure import Figure
+from PIL import Image
+
+from . import palette
+
+STYLE = {
+    "font.size": 10,
+    "axes.edgecolor": palette.INK,
+    "axes.labelcolor": palette.INK,
+    "axes.spines.top": False,
+    "axes.spines.right": False,
+    "axes.grid": True,
+    "grid.color": palette.GRID,
+    "xtick.color": palette.INK,
+    "ytick.color": palette.INK,
+    "legend.frameon": False,
+}
+
+
+class CourseFigure(Figure):
+    """A Figure that shows itself as a PNG when it is the last value of a notebook cell."""
+
+    def _repr_png_(self) -> bytes:
+        return FigureRenderer(self).png()
+
+
+def new_figure(width: float = 8.0, height: float = 3.6, dpi: int = 80, **subplots) -> tuple[Figure, object]:
+    """A styled figure and its axes (``Figure.subplots`` keywords pass through).
+
+    Returns
+    -------
+    (fig, axes)
+    """
+    import matplotlib as mpl
+
+    with mpl.rc_context(STYLE):
+        fig = CourseFigure(figsize=(width, height), dpi=dpi, layout="constrained")
+        FigureCanvasAgg(fig)
+        axes = fig.subplots(**subplots)
+    return fig, axes
+
+
+def nice_limit(value: float) -> float:
+    """The next power of two above ``value``: an axis limit that changes rarely
+    while dragging, so the static background need not be redrawn often."""
+    return float(2.0 ** np.ceil(np.log2(max(value, 1e-12))))
+
+
+class FigureRenderer:
+    """Render a figure to PNG bytes, redrawing only what moves.
+
+    Artists listed in ``dynamic`` are marked animated: a full draw caches the
+    static background once, and each later :meth:`png` restores it and draws
+    only the dynamic artists (blitting), which is what makes a slider feel
+    immediate.  Call :meth:`invalidate` after changing anything static
+    (axis limits, labels).
+    """
+
+    def __init__(self, fig: Figure, dynamic: list[Artist] = ()):
+        self.fig = fig
+        self.dynamic = list(dynamic)
+        for artist in self.dynamic:
+            artist.set_animated(True)
+        self._background = None
+
+    def invalidate(self) -> None:
+        self._background = None
+
+    def png(self) -> bytes:
+        canvas = self.fig.canvas
+        if self._background is None:
+            canvas.draw()  # static artists only: animated ones are skipped
+            if self.fig.get_layout_engine() is not None:
+                self.fig.set_layout_engine("none")  # keep the layout found once; it is slow to redo
+            self._background = canvas.copy_from_bbox(self.fig.bbox)
+        else:
+            canvas.restore_region(self._background)
+        for artist in self.dynamic:
+            if artist.get_visible():
+                self.fig.draw_artist(artist)
+        rgba = np.asarray(canvas.buffer_rgba())
+        buf = io.BytesIO()
+        Image.fromarray(rgba[..., :3]).save(buf, format="png", compress_level=1)
+        return buf.getvalue()

@@ -1,0 +1,18 @@
+"""Seeded simulation engines.  Each returns an immutable run record (arrays over
+time), or is a pure function of its inputs and a seeded generator."""
+
+from .drift import bias_drift, drift_sigma, monte_carlo_drift
+from .hallway import door_likelihood, motion_kernel, move, read_door
+from .line import LineRun, simulate_line
+
+__all__ = [
+    "LineRun",
+    "bias_drift",
+    "door_likelihood",
+    "drift_sigma",
+    "monte_carlo_drift",
+    "motion_kernel",
+    "move",
+    "read_door",
+    "simulate_line",
+]

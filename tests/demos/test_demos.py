@@ -1,0 +1,196 @@
+"""Every demo driven without a browser: controls to their extremes, every button,
+the animation stepped; the model changes as it should and nothing drawn is NaN."""
+
+from __future__ import annotations
+
+import ipywidgets as widgets
+import numpy as np
+import pytest
+from matplotlib.collections import Collection
+from matplotlib.lines import Line2D
+from matplotlib.patches import Patch
+from matplotlib.text import Text
+
+import kfcourse as kf
+
+DEMOS = ["raw_vs_filtered", "hallway", "covariance_ellipse", "step_through", "trust_slider"]
+
+
+def make(name, seed=0):
+    return getattr(kf.demos, name)(seed=seed)
+
+
+def plotted_arrays(fig):
+    """Every coordinate array and text drawn in the figure."""
+    for ax in fig.axes:
+        for artist in ax.get_children():
+            if not artist.get_visible():
+                continue
+            if isinstance(artist, Line2D):
+                yield np.asarray(artist.get_xydata(), float)
+            elif isinstance(artist, Collection):
+                yield np.asarray(artist.get_offsets(), float)
+                for path in artist.get_paths():
+                    yield path.vertices
+            elif isinstance(artist, Patch):
+                yield artist.get_verts()
+            elif isinstance(artist, Text):
+                assert "nan" not in artist.get_text().lower(), artist.get_text()
+                assert "inf" not in artist.get_text().replace("info", ""), artist.get_text()
+
+
+def assert_finite(demo):
+    arrays = list(plotted_arrays(demo.renderer.fig))
+    assert arrays
+    for a in arrays:
+        assert np.isfinite(a).all()
+    assert bytes(demo.image.value[:4]) == b"\x89PNG"
+
+
+def sliders(demo):
+    kinds = (widgets.IntSlider, widgets.FloatSlider, widgets.FloatLogSlider)
+    return {k: c for k, c in demo.controls.items() if isinstance(c, kinds)}
+
+
+def buttons(demo):
+    return {k: c for k, c in demo.controls.items() if isinstance(c, widgets.Button)}
+
+
+@pytest.mark.parametrize("name", DEMOS)
+def test_first_frame_is_drawn_and_repeatable(name):
+    a, b = make(name), make(name)
+    assert len(a.image.value) > 5000  # a real picture, not an empty canvas
+    assert bytes(a.image.value) == bytes(b.image.value)  # same seed, same first frame
+    assert "kf-demo" in a._dom_classes
+    assert_finite(a)
+
+
+@pytest.mark.parametrize("name", DEMOS)
+def test_every_slider_at_min_max_and_middle(name):
+    demo = make(name)
+    found = sliders(demo)
+    assert found, "a demo without a slider"
+    for key, control in found.items():
+        for value in (control.min, control.max, (control.min + control.max) / 2):
+            before = demo.image.value
+            if isinstance(control, widgets.IntSlider):
+                value = round(value)
+            if isinstance(control, widgets.FloatLogSlider):
+                value = control.base**value
+            if np.isclose(control.value, value):
+                continue
+            control.value = value
+            assert bytes(demo.image.value) != bytes(before), f"{key}={value} did not change the picture"
+            assert_finite(demo)
+
+
+@pytest.mark.parametrize("name", DEMOS)
+def test_every_button(name):
+    demo = make(name)
+    for key, control in buttons(demo).items():
+        control.click()
+        assert_finite(demo), key
+
+
+def test_raw_vs_filtered_animation_and_noise():
+    demo = make("raw_vs_filtered")
+    frame = demo.controls["frame"]
+    assert isinstance(demo.controls["play"], widgets.Play)
+    assert demo.controls["play"].max == frame.max
+    frame.value = 10
+    assert demo.model.frame == 10
+    frame.value = frame.max
+    assert demo.model.frame == frame.max
+    demo.controls["sensor_noise"].value = demo.controls["sensor_noise"].max
+    raw, filt = demo.model.rms_errors()
+    assert filt < raw / 2  # the raw trace explodes, the filter holds
+    seed = demo.model.seed
+    z = demo.model.run.z.copy()
+    demo.controls["new_noise"].click()
+    assert demo.model.seed == seed + 1
+    assert not np.allclose(demo.model.run.z, z)
+
+
+def test_hallway_predict_update_reset():
+    demo = make("hallway")
+    m = demo.model
+    first = m.belief.copy()
+    demo.controls["predict"].click()
+    assert m.phase == "predicted"
+    assert m.belief.sum() == pytest.approx(1.0)
+    assert not np.allclose(m.belief, first)
+    kernel = kf.sim.motion_kernel(m.motion_reliability)
+    assert m.belief == pytest.approx(kf.bayes_predict(first, kernel, "wall"))
+    demo.controls["update"].click()
+    assert m.phase == "updated"
+    assert m.belief.sum() == pytest.approx(1.0)
+    demo.controls["boundary"].value = "wrap"
+    for _ in range(8):
+        demo.controls["predict"].click()
+        demo.controls["update"].click()
+        assert m.belief.sum() == pytest.approx(1.0)
+        assert np.isfinite(m.belief).all()
+    demo.controls["sensor_reliability"].value = demo.controls["sensor_reliability"].max
+    demo.controls["motion_reliability"].value = 1.0
+    for _ in range(6):
+        demo.controls["predict"].click()
+        demo.controls["update"].click()
+    assert m.belief.argmax() == m.true_cell or m.belief.max() < 0.9
+    demo.controls["reset"].click()
+    demo.controls["motion_reliability"].value = 0.8
+    demo.controls["sensor_reliability"].value = 0.8
+    assert m.steps == 0
+
+
+def test_hallway_reset_restores_first_frame():
+    demo = make("hallway")
+    first = demo.image.value
+    demo.controls["predict"].click()
+    demo.controls["update"].click()
+    demo.controls["reset"].click()
+    assert bytes(demo.image.value) == bytes(first)
+
+
+def test_covariance_tilts_with_rho_and_fractions():
+    demo = make("covariance_ellipse")
+    ring = demo.renderer.dynamic[1]
+    demo.controls["rho"].value = 0.9
+    up = ring.get_angle() % 180
+    demo.controls["rho"].value = -0.9
+    down = ring.get_angle() % 180
+    assert 0 < up < 90 < down < 180
+    frac = demo.model.fractions()
+    assert frac == pytest.approx(kf.mass_inside(np.array([1, 2, 3])), abs=0.04)
+    samples = demo.model.samples()
+    assert np.corrcoef(samples.T)[0, 1] == pytest.approx(-0.9, abs=0.03)
+
+
+def test_step_through_reproduces_the_lesson():
+    demo = make("step_through")
+    for key in ("predict", "update", "predict", "update"):
+        demo.controls[key].click()
+    rows = demo.model.rows
+    assert [round(r[5], 3) for r in rows] == [0.857, 0.741]
+    assert [round(r[6], 3) for r in rows] == [3.514, 4.652]
+    demo.controls["R"].value = 1.0
+    assert demo.model.rows[0][5] > 0.9  # replayed with the new R
+    demo.controls["reset"].click()
+    assert demo.model.rows == [] and demo.model.phase == "prior"
+
+
+def test_trust_gauge_and_narrowing():
+    demo = make("trust_slider")
+    m = demo.model
+    bar = demo.renderer.dynamic[-2]
+    for vp in (0.01, 1.0, 10.0):
+        for vm in (0.01, 1.0, 10.0):
+            demo.controls["var_pred"].value = vp
+            demo.controls["var_meas"].value = vm
+            _mu, var = m.fused()
+            assert var < min(m.var_pred, m.var_meas)
+            assert bar.get_width() == pytest.approx(m.K)
+            assert_finite(demo)
+    demo.controls["var_pred"].value = 10.0
+    demo.controls["var_meas"].value = 0.01
+    assert m.K > 0.99
+    assert m.fused()[0] == pytest.approx(m.z, abs=0.01)

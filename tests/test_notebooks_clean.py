@@ -1,0 +1,75 @@
+"""The course notebooks are stored clean, and nbval really checks something.
+
+nbval compares a ``# NBVAL_CHECK_OUTPUT`` cell only when the notebook stores its
+output *and* execution count; without them it passes silently.  Every other
+cell must be stored without outputs or counts so nothing stale ships.
+"""
+
+from __future__ import annotations
+
+import json
+import re
+from pathlib import Path
+
+import pytest
+
+ROOT = Path(__file__).resolve().parents[1]
+NOTEBOOKS = sorted((ROOT / "notebooks").glob("*.ipynb"))
+MARK = "# NBVAL_CHECK_OUTPUT"
+
+
+def cells(path: Path):
+    nb = json.loads(path.read_text(encoding="utf-8"))
+    return nb, nb["cells"]
+
+
+def test_there_are_notebooks():
+    assert len(NOTEBOOKS) >= 5
+    for path in NOTEBOOKS:
+        assert re.fullmatch(r"\d\d_[a-z0-9_]+\.ipynb", path.name), path.name
+
+
+@pytest.mark.parametrize("path", NOTEBOOKS, ids=lambda p: p.stem)
+def test_checked_cells_store_output_and_count(path):
+    _, cs = cells(path)
+    checked = [c for c in cs if c["cell_type"] == "code" and MARK in "".join(c["source"])]
+    assert checked, f"{path.name} has no {MARK} cell: its worked numbers are not checked"
+    for c in checked:
+        src = "".join(c["source"])
+        assert c["execution_count"] is not None, f"no execution count, nbval would skip:\n{src}"
+        assert c["outputs"], f"no stored output, nbval would check nothing:\n{src}"
+        for out in c["outputs"]:
+            assert out.get("name") != "stderr", f"stored stderr output:\n{src}"
+            assert out["output_type"] != "error", f"stored error:\n{src}"
+
+
+@pytest.mark.parametrize("path", NOTEBOOKS, ids=lambda p: p.stem)
+def test_other_cells_are_clean(path):
+    nb, cs = cells(path)
+    assert "widgets" not in nb.get("metadata", {}), "stale widget state stored"
+    for c in cs:
+        if c["cell_type"] != "code" or MARK in "".join(c["source"]):
+            continue
+        src = "".join(c["source"])
+        assert c["outputs"] == [], f"unchecked cell stores outputs:\n{src}"
+        assert c["execution_count"] is None, f"unchecked cell stores an execution count:\n{src}"
+
+
+@pytest.mark.parametrize("path", NOTEBOOKS, ids=lambda p: p.stem)
+def test_structure(path):
+    """Title, what you will learn, links to the neighbours, a recap, no TODO."""
+    _, cs = cells(path)
+    md = ["".join(c["source"]) for c in cs if c["cell_type"] == "markdown"]
+    assert md and md[0].lstrip().startswith("# "), "first cell is not a title"
+    text = "\n".join(md)
+    assert re.search(r"(?i)you will learn", text), "no 'what you will learn'"
+    assert re.search(r"(?i)#+ *recap", text), "no recap section"
+    number = int(path.name[:2])
+    existing = {int(p.name[:2]) for p in NOTEBOOKS}
+    for neighbour in (number - 1, number + 1):
+        if neighbour in existing:
+            assert re.search(rf"\]\(\s*{neighbour:02d}_[a-z0-9_]+\.ipynb\s*\)", text), f"no link to chapter {neighbour}"
+    for target in re.findall(r"\]\(\s*([^)\s]+\.ipynb)", text):
+        assert (path.parent / target).exists(), f"broken link to {target}"
+    everything = "\n".join("".join(c["source"]) for c in cs)
+    assert "TODO" not in everything and "FIXME" not in everything

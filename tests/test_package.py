@@ -1,0 +1,142 @@
+"""The package as students meet it: importable from anywhere, light, documented, stable API."""
+
+from __future__ import annotations
+
+import inspect
+import json
+import os
+import re
+import subprocess
+import sys
+from pathlib import Path
+
+import pytest
+
+import kfcourse as kf
+
+REPO = Path(__file__).resolve().parents[1]
+
+# DESIGN.md, "Student-facing API": the documented call of every name (kept stable).
+DESIGN_API = """
+bayes_predict(belief, kernel, boundary="wall")
+bayes_update(belief, likelihood)
+kf_1d_step(mu, var, u, z, a=1.0, b=1.0, c=1.0, R=0.2, Q=0.1)
+steady_state_1d(R, Q, a=1.0, c=1.0)
+fuse(mu1, var1, mu2, var2)
+kf_predict(mu, Sig, u, F, B, R)
+kf_update(mu_bar, Sig_bar, z, H, Q)
+kf_step(mu, Sig, u, z, F, B, H, R, Q)
+range_bearing(state, landmark)
+range_bearing_jacobian(state, landmark)
+numeric_jacobian(f, x, eps=1e-6)
+unicycle(state, u, dt)
+unicycle_jacobian(state, u, dt)
+wrap_angle(a)
+ekf_predict(mu, Sig, u, g, G, R)
+ekf_update(mu_bar, Sig_bar, z, h, H, Q, residual=None)
+sigma_points(mu, Sig, lam)
+unscented_transform(mu, Sig, f, lam)
+unscented_1d(mu, var, f, lam=0.0)
+ukf_predict(mu, Sig, u, g, R, lam)
+ukf_update(mu_bar, Sig_bar, z, h, Q, lam, residual=None)
+mahalanobis(nu, S)
+""".strip().splitlines()
+
+
+def _design_signature(line: str) -> tuple[str, inspect.Signature]:
+    name = line.split("(", 1)[0]
+    namespace: dict = {}
+    exec(f"def {line}: pass", namespace)  # only the literal table above
+    return name, inspect.signature(namespace[name])
+
+
+DESIGN_SIGNATURES = dict(_design_signature(line) for line in DESIGN_API)
+
+
+def _public_functions():
+    """Every function exported from the top level, plus everything in kfcourse.models.__all__."""
+    seen = {}
+    for name in kf.__all__:
+        obj = getattr(kf, name)
+        if inspect.isfunction(obj):
+            seen[f"kfcourse.{name}"] = obj
+    for name in kf.models.__all__:
+        obj = getattr(kf.models, name)
+        if inspect.isfunction(obj) and obj not in seen.values():
+            seen[f"kfcourse.models.{name}"] = obj
+    return seen
+
+
+PUBLIC = _public_functions()
+
+
+# ---------------------------------------------------------------- import
+def test_import_from_another_folder_is_light(tmp_path):
+    code = (
+        "import json, sys\n"
+        "import kfcourse as kf\n"
+        "kf.kf_1d_step(2.0, 0.4, 1.0, 3.6)\n"  # using the math loads nothing heavy either
+        "print(json.dumps({'file': kf.__file__,\n"
+        "    'loaded': sorted(m for m in sys.modules if m.split('.')[0] in ('matplotlib', 'ipywidgets')\n"
+        "                     or m in ('kfcourse.plots', 'kfcourse.demos', 'kfcourse.sim'))}))\n"
+    )
+    env = {k: v for k, v in os.environ.items() if k != "PYTHONPATH"}
+    proc = subprocess.run(
+        [sys.executable, "-c", code], cwd=tmp_path, env=env, capture_output=True, text=True, timeout=120, check=False
+    )
+    assert proc.returncode == 0, proc.stderr
+    out = json.loads(proc.stdout.strip().splitlines()[-1])
+    assert Path(out["file"]).resolve() == (REPO / "kfcourse" / "__init__.py").resolve()
+    assert out["loaded"] == []
+
+
+def test_unknown_attribute_is_an_attribute_error():
+    with pytest.raises(AttributeError, match="no_such_thing"):
+        _ = kf.no_such_thing
+
+
+# ---------------------------------------------------------------- API table
+@pytest.mark.parametrize("name", list(DESIGN_SIGNATURES))
+def test_design_api_name_is_exported_from_the_top_level(name):
+    assert name in kf.__all__
+    assert callable(getattr(kf, name))
+
+
+@pytest.mark.parametrize("name", list(DESIGN_SIGNATURES))
+def test_design_api_signature_is_kept(name):
+    """The documented parameters come first, in order, with the documented defaults;
+    anything added after them is an optional keyword."""
+    want = list(DESIGN_SIGNATURES[name].parameters.values())
+    have = list(inspect.signature(getattr(kf, name)).parameters.values())
+    assert [p.name for p in have[: len(want)]] == [p.name for p in want]
+    for w, h in zip(want, have, strict=False):
+        assert h.default == w.default, (w.name, h.default, w.default)
+        assert h.kind in (h.POSITIONAL_OR_KEYWORD, h.POSITIONAL_ONLY), w.name
+    for extra in have[len(want) :]:
+        assert extra.default is not inspect.Parameter.empty, extra.name
+
+
+def test_every_exported_name_exists():
+    missing = [n for n in kf.__all__ if not hasattr(kf, n)]
+    assert missing == []
+
+
+def test_star_import_gives_the_design_api():
+    namespace: dict = {}
+    exec("from kfcourse import *", namespace)
+    assert set(DESIGN_SIGNATURES) <= set(namespace)
+
+
+# ---------------------------------------------------------------- docstrings
+RETURNS_SECTION = re.compile(r"^\s*Returns\s*\n\s*-{7,}\s*$", re.MULTILINE)
+
+
+def test_the_public_function_list_is_not_empty():
+    assert len(PUBLIC) >= len(DESIGN_SIGNATURES)
+
+
+@pytest.mark.parametrize("qualname", list(PUBLIC))
+def test_public_function_docstring(qualname):
+    doc = inspect.getdoc(PUBLIC[qualname]) or ""
+    assert re.search(r"Introduced in chapter \d", doc), qualname
+    assert RETURNS_SECTION.search(doc), qualname
