@@ -70,7 +70,7 @@ def button(description: str, icon: str = "", tooltip: str = "") -> widgets.Butto
     return widgets.Button(description=description, icon=icon, tooltip=tooltip, layout=widgets.Layout(width="110px"))
 
 
-def play(n_frames: int, interval_ms: int = 70):
+def play(n_frames: int, interval_ms: int = 90):
     """A Play widget and a frame slider linked in the browser (scrub with the slider)."""
     player = widgets.Play(value=0, min=0, max=n_frames - 1, step=1, interval=interval_ms, description="Run")
     frame = widgets.IntSlider(

@@ -138,14 +138,14 @@ def step_through(seed: int = 0) -> Demo:
             text = rf"Predict: $\bar\mu$ = {m.mu:.3f}, $\bar\sigma^2$ = {m.var:.3f} (grew by R)"
         else:
             text = f"Update with z = {m.z:.2f}: K = {m.K:.3f}\nμ = {m.mu:.3f}, σ² = {m.var:.3f}"
-        status.set_text(f"{text}\nR = {m.R:.3f}, Q = {m.Q:.3f}")
+        status.set_text(f"{text}\nR = {m.R:.3g}, Q = {m.Q:.3g}")
         table.value = _table(m.rows)
 
     predict = button("Predict", icon="arrow-right", tooltip="Move +1 m: shift and widen")
     update = button("Update", icon="eye", tooltip="Read the sensor: blend and narrow")
     reset = button("Reset", icon="undo", tooltip="Back to the prior N(2.0, 0.40)")
-    R = slider(widgets.FloatLogSlider, "process noise R", 0.2, -3, 1, 0.1, readout_format=".3f", base=10)
-    Q = slider(widgets.FloatLogSlider, "measurement noise Q", 0.1, -3, 1, 0.1, readout_format=".3f", base=10)
+    R = slider(widgets.FloatLogSlider, "process noise R", 0.2, -3, 1, 0.1, readout_format=".3g", base=10)
+    Q = slider(widgets.FloatLogSlider, "measurement noise Q", 0.1, -3, 1, 0.1, readout_format=".3g", base=10)
     caption = (
         "<b>Step through the 1-D Kalman filter.</b> Dashed teal: the belief before the step; "
         "purple: the prediction; orange: the measurement N(z, Q); teal: the updated belief. "

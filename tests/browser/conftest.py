@@ -84,13 +84,21 @@ def _hashes(folders) -> dict[str, str]:
 # --------------------------------------------------------------------------- chromium
 
 
+def _cannot_run(reason: str):
+    """Skip the browser suite, but fail on CI, where a skip would hide that nothing ran."""
+    if os.environ.get("CI") == "true":
+        pytest.fail(reason, pytrace=False)
+    pytest.skip(reason)
+
+
 @pytest.fixture(scope="session")
 def chromium_executable() -> Path:
     if not CHROMIUM.exists():
-        reason = f"{CHROMIUM} is missing (apt-get install chromium); the browser suite cannot run"
-        if os.environ.get("CI") == "true":
-            pytest.fail(reason, pytrace=False)
-        pytest.skip(reason)
+        _cannot_run(f"{CHROMIUM} is missing (apt-get install chromium); the browser suite cannot run")
+    try:
+        import playwright.sync_api  # noqa: F401
+    except ImportError:
+        _cannot_run("playwright is not installed (requirements-dev.txt); the browser suite cannot run")
     return CHROMIUM
 
 
@@ -129,6 +137,15 @@ def _status_ok(url: str) -> bool:
             return response.status == 200
     except (urllib.error.URLError, OSError):
         return False
+
+
+def _check_settings_applied(url: str) -> None:
+    """The server reads our settings (above all: autosave off), not a user's own."""
+    for plugin, values in LAB_SETTINGS.items():
+        package, name = plugin.rsplit("/", 1)
+        with urllib.request.urlopen(f"{url}lab/api/settings/{package}:{name}", timeout=10) as response:
+            applied = json.load(response)["settings"]
+        assert applied == values, f"JupyterLab did not take the test settings for {plugin}: {applied}"
 
 
 class LabServer:
@@ -201,6 +218,7 @@ def lab_server(tmp_path_factory, chromium_executable):
             if time.monotonic() > deadline:
                 pytest.fail(f"jupyter lab not up after {SERVER_START_TIMEOUT_S} s:\n{server.log_tail()}")
             time.sleep(0.25)
+        _check_settings_applied(url)
         yield server
     finally:
         proc.terminate()
