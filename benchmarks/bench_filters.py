@@ -156,7 +156,9 @@ def kfcourse_ukf() -> Callable:
     def run(zs):
         mu, Sig, out = UNI_MU0, UNI_SIG0, []
         for z in zs:
-            mu, Sig = kf.ukf_predict(mu, Sig, CONTROL, g, UNI_R, UKF_LAM, residual=pose_residual, mean=pose_mean)
+            mu, Sig = kf.ukf_predict(
+                mu, Sig, CONTROL, g, UNI_R, UKF_LAM, residual=pose_residual, mean=pose_mean, vectorized=True
+            )
             mu, Sig = kf.ukf_update(
                 mu,
                 Sig,
@@ -167,6 +169,7 @@ def kfcourse_ukf() -> Callable:
                 residual=range_bearing_residual,
                 mean=range_bearing_mean,
                 x_residual=pose_residual,
+                vectorized=True,  # the models take all sigma points at once; filterpy calls them per point
             )
             out.append((mu, Sig))
         return out

@@ -8,6 +8,7 @@ them on every step.
 from __future__ import annotations
 
 import math
+import weakref
 from collections.abc import Callable, Mapping
 
 import numpy as np
@@ -19,9 +20,30 @@ _SUM_ATOL = 1e-6  # how far a probability vector may be from summing to 1
 _FLOAT = np.dtype(float)
 _SMALL = 64  # arrays up to this many elements are summed in Python to test finiteness (faster)
 _SMALL_CHOLESKY = 4  # rows up to which the positive-definiteness test runs in Python (faster)
-_CONSTANT_MAX_SIZE = 1024  # elements; larger constant covariances are not remembered
-_CONSTANT_MAX_COUNT = 64  # constant covariances remembered before the memory is cleared
-_valid_constants: dict[tuple, None] = {}  # (shape, bytes) of covariances that passed every check
+_CONSTANT_MAX_SIZE = 1024  # elements; larger constant matrices are not remembered
+_CONSTANT_MAX_COUNT = 64  # constant matrices remembered before the memory is cleared
+_valid_constants: dict[tuple, None] = {}  # (kind, shape, bytes) of constant matrices that passed
+
+
+_PRODUCED_MAX_COUNT = 64  # covariances remembered before the memory is cleared
+_produced: dict[int, tuple[weakref.ref, bytes]] = {}  # covariances a filter step returned, by id
+
+
+def produced(a: np.ndarray) -> np.ndarray:
+    """Remember a covariance that a filter step computed (symmetric and positive
+    semi-definite by construction) so that passing it straight back into the next
+    step skips the symmetry and definiteness checks.  Its bytes are remembered
+    too: an array changed in place since is checked in full again."""
+    if _all_finite(a):
+        if len(_produced) >= _PRODUCED_MAX_COUNT:
+            _produced.clear()
+        _produced[id(a)] = (weakref.ref(a), a.tobytes())
+    return a
+
+
+def _was_produced(x) -> bool:
+    entry = _produced.get(id(x))
+    return entry is not None and entry[0]() is x and x.tobytes() == entry[1]
 
 
 def _all_finite(a: np.ndarray) -> bool:
@@ -93,26 +115,51 @@ def matrix(x, name: str, rows: int | None = None, cols: int | None = None) -> np
     return a
 
 
+def _constant_key(x, kind: str):
+    """Key under which a small float matrix that passed a check is remembered."""
+    if type(x) is np.ndarray and x.dtype == _FLOAT and x.ndim == 2 and x.size <= _CONSTANT_MAX_SIZE:
+        return (kind, x.shape, x.tobytes())
+    return None
+
+
+def _remember(key) -> None:
+    if key is not None:
+        if len(_valid_constants) >= _CONSTANT_MAX_COUNT:
+            _valid_constants.clear()
+        _valid_constants[key] = None
+
+
+def constant_matrix(x, name: str, rows: int | None = None, cols: int | None = None) -> np.ndarray:
+    """:func:`matrix` for a model matrix passed unchanged on every step (F, B, H):
+    a float array that already passed is remembered by its shape and bytes."""
+    key = _constant_key(x, "matrix")
+    if key in _valid_constants and (rows is None or x.shape[0] == rows) and (cols is None or x.shape[1] == cols):
+        return x
+    a = matrix(x, name, rows, cols)
+    _remember(key)
+    return a
+
+
 def covariance(x, name: str, n: int | None = None, *, constant: bool = False) -> np.ndarray:
     """A finite, symmetric, positive semi-definite ``(n, n)`` matrix.
 
     With ``constant`` (for a model's noise covariance, passed unchanged on every
     step) a float array that already passed is remembered by its shape and
-    bytes, so the same matrix is not checked again.
+    bytes, so the same matrix is not checked again.  A covariance that a filter
+    step returned (see :func:`produced`) is not checked again either.
     """
-    key = None
-    if constant and type(x) is np.ndarray and x.dtype == _FLOAT and x.ndim == 2 and x.size <= _CONSTANT_MAX_SIZE:
-        key = (x.shape, x.tobytes())
-        if key in _valid_constants and (n is None or x.shape == (n, n)):
-            return x
+    if type(x) is np.ndarray and _was_produced(x) and (n is None or x.shape == (n, n)):
+        return x
+    key = _constant_key(x, "covariance") if constant else None
+    if key in _valid_constants and (n is None or x.shape == (n, n)):
+        return x
     a = matrix(x, name, n, n)
+    if a.size == 0:
+        raise ValueError(f"{name} must not be empty")
     if a.shape[0] != a.shape[1]:
         raise ValueError(f"{name} must be a square covariance matrix, got shape {a.shape}")
     _check_symmetric_psd(a, name)
-    if key is not None:
-        if len(_valid_constants) >= _CONSTANT_MAX_COUNT:
-            _valid_constants.clear()
-        _valid_constants[key] = None
+    _remember(key)
     return a
 
 
@@ -184,9 +231,16 @@ def kernel(k, name: str) -> dict[int, float]:
         raise ValueError(f"{name} must be a non-empty mapping offset -> probability, got {k!r}")
     out: dict[int, float] = {}
     for off, p in k.items():
-        if isinstance(off, bool) or not float(off).is_integer():
+        try:
+            whole = not isinstance(off, bool) and float(off).is_integer()
+        except (TypeError, ValueError):
+            whole = False
+        if not whole:
             raise ValueError(f"{name} offsets must be whole numbers of cells, got {off!r}")
-        out[int(off)] = variance(p, f"{name}[{off}]")  # a probability: finite and >= 0
+        prob = scalar(p, f"{name}[{off}]")
+        if prob < 0:
+            raise ValueError(f"{name}[{off}] is a probability and must be >= 0, got {prob}")
+        out[int(off)] = prob
     total = math.fsum(out.values())
     if abs(total - 1.0) > _SUM_ATOL:
         raise ValueError(f"{name} probabilities must sum to 1, but sum to {total:.6g}")
@@ -198,6 +252,11 @@ def function(f, name: str) -> Callable:
     if not callable(f):
         raise ValueError(f"{name} must be callable, got {f!r}")
     return f
+
+
+def optional_function(f, name: str) -> Callable | None:
+    """A callable or None (an optional hook such as ``residual``)."""
+    return None if f is None else function(f, name)
 
 
 def output(y, name: str, n: int) -> np.ndarray:

@@ -75,7 +75,7 @@ def numeric_jacobian(f: Callable, x, eps: float = 1e-6, residual: Callable | Non
     f = v.function(f, "f")
     x = v.vector(x, "x")
     eps = v.variance(eps, "eps", positive=True)
-    diff = residual if residual is not None else np.subtract
+    diff = v.optional_function(residual, "residual") or np.subtract
     cols = []
     for i in range(x.size):
         step = np.zeros_like(x)
@@ -117,10 +117,16 @@ def constant_velocity(dt: float, dim: int = 1) -> tuple[np.ndarray, np.ndarray]:
     return F, H
 
 
+def _poses(state) -> np.ndarray:
+    """A pose (3,) or a stack of poses (N, 3), one a row."""
+    s = v.finite(state, "state")
+    if s.shape[-1:] != (3,) or s.ndim > 2:
+        raise ValueError(f"state must have shape (3,) or (N, 3), got {s.shape}")
+    return s
+
+
 def _pose_control(state, u, dt):
-    s = v.vector(state, "state", 3)
-    c = v.vector(u, "u", 2)
-    return s, c, v.variance(dt, "dt", positive=True)
+    return _poses(state), v.vector(u, "u", 2), v.variance(dt, "dt", positive=True)
 
 
 def unicycle(state, u, dt) -> np.ndarray:
@@ -139,8 +145,9 @@ def unicycle(state, u, dt) -> np.ndarray:
 
     Parameters
     ----------
-    state : array_like, shape (3,)
-        Pose ``[x, y, theta]``.
+    state : array_like, shape (3,) or (N, 3)
+        Pose ``[x, y, theta]``, or N poses one a row (as the UKF's
+        ``vectorized`` mode passes its sigma points).
     u : array_like, shape (2,)
         Control ``[V, omega]``.
     dt : float
@@ -148,13 +155,15 @@ def unicycle(state, u, dt) -> np.ndarray:
 
     Returns
     -------
-    ndarray, shape (3,)
+    ndarray, shape (3,) or (N, 3)
         Next pose, heading wrapped to (-pi, pi].
     """
-    (x, y, th), (V, w), dt = _pose_control(state, u, dt)
+    s, (V, w), dt = _pose_control(state, u, dt)
+    x, y, th = s[..., 0], s[..., 1], s[..., 2]
     half = 0.5 * w * dt
     d = V * dt * np.sinc(half / np.pi)  # chord length: V dt sin(half)/half
-    return np.array([x + d * math.cos(th + half), y + d * math.sin(th + half), wrap_angle(th + w * dt)])
+    out = np.stack([x + d * np.cos(th + half), y + d * np.sin(th + half), wrap_angle(th + w * dt)], axis=-1)
+    return out
 
 
 def unicycle_jacobian(state, u, dt) -> np.ndarray:
@@ -178,7 +187,10 @@ def unicycle_jacobian(state, u, dt) -> np.ndarray:
     -------
     ndarray, shape (3, 3)
     """
-    (_, _, th), (V, w), dt = _pose_control(state, u, dt)
+    s, (V, w), dt = _pose_control(state, u, dt)
+    if s.ndim != 1:
+        raise ValueError(f"state must have shape (3,), got {s.shape}")
+    th = s[2]
     half = 0.5 * w * dt
     d = V * dt * np.sinc(half / np.pi)
     return np.array([[1.0, 0.0, -d * math.sin(th + half)], [0.0, 1.0, d * math.cos(th + half)], [0.0, 0.0, 1.0]])
@@ -204,18 +216,23 @@ def range_bearing(state, landmark) -> np.ndarray:
 
     Parameters
     ----------
-    state : array_like, shape (3,)
-        Pose ``[x, y, theta]``.
+    state : array_like, shape (3,) or (N, 3)
+        Pose ``[x, y, theta]``, or N poses one a row.
     landmark : array_like, shape (2,)
         Landmark ``[mx, my]``.
 
     Returns
     -------
-    ndarray, shape (2,)
+    ndarray, shape (2,) or (N, 2)
         ``[r, phi]``, bearing wrapped to (-pi, pi].
     """
-    dx, dy, q, th = _offset(state, landmark)
-    return np.array([math.sqrt(q), wrap_angle(math.atan2(dy, dx) - th)])
+    s = _poses(state)
+    m = v.vector(landmark, "landmark", 2)
+    dx, dy = m[0] - s[..., 0], m[1] - s[..., 1]
+    q = dx * dx + dy * dy  # squared distance
+    if np.any(q == 0.0):
+        raise ValueError("landmark must not sit exactly at the robot's position (bearing undefined)")
+    return np.stack([np.sqrt(q), wrap_angle(np.arctan2(dy, dx) - s[..., 2])], axis=-1)
 
 
 def range_bearing_jacobian(state, landmark) -> np.ndarray:
@@ -237,14 +254,22 @@ def range_bearing_jacobian(state, landmark) -> np.ndarray:
     return np.array([[-dx / r, -dy / r, 0.0], [dy / q, -dx / q, -1.0]])
 
 
+def _rows(x, name: str, n: int) -> np.ndarray:
+    a = v.finite(x, name)
+    if a.shape[-1:] != (n,) or a.ndim > 2:
+        raise ValueError(f"{name} must have shape ({n},) or (N, {n}), got {a.shape}")
+    return a
+
+
 def _angle_residual(a, b, index: int, n: int, name: str) -> np.ndarray:
-    d = v.vector(a, f"{name} a", n) - v.vector(b, f"{name} b", n)
-    d[index] = wrap_angle(d[index])
+    d = _rows(a, f"{name} a", n) - _rows(b, f"{name} b", n)  # rows of a minus b (either may be a stack)
+    d[..., index] = wrap_angle(d[..., index])
     return d
 
 
 def pose_residual(a, b) -> np.ndarray:
-    """``a - b`` for poses ``[x, y, theta]``, the heading difference wrapped.
+    """``a - b`` for poses ``[x, y, theta]`` (or stacks of them, one a row), the
+    heading difference wrapped.
 
     Introduced in chapter 9 (the UKF needs it to average headings).
 
@@ -256,7 +281,8 @@ def pose_residual(a, b) -> np.ndarray:
 
 
 def range_bearing_residual(a, b) -> np.ndarray:
-    """``a - b`` for readings ``[r, phi]``, the bearing difference wrapped.
+    """``a - b`` for readings ``[r, phi]`` (or stacks of them, one a row), the
+    bearing difference wrapped.
 
     Introduced in chapter 8: pass it as ``residual`` to the EKF/UKF update.
 

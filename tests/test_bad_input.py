@@ -344,3 +344,38 @@ def test_the_valid_baselines_do_not_raise():
     kf.mahalanobis([1.0, 0.0], I2)
     idx, _ = kf.associate(**ASSOC_OK)
     assert idx == 0
+
+
+# Hooks and kernels that are not what they should be.
+def _rb(x):
+    return kf.range_bearing(x, [4.0, 6.0])
+
+
+def _rb_jac(x):
+    return kf.range_bearing_jacobian(x, [4.0, 6.0])
+
+
+@pytest.mark.parametrize(
+    "call",
+    [
+        lambda: kf.ekf_update(np.zeros(3), np.eye(3), [5.0, 0.9], _rb, _rb_jac, np.eye(2), residual=3),
+        lambda: kf.ukf_update(np.zeros(3), np.eye(3), [5.0, 0.9], _rb, np.eye(2), 0.0, residual="wrap"),
+        lambda: kf.ukf_predict(np.zeros(3), np.eye(3), None, lambda x, u: x, np.eye(3), 0.0, mean=1),
+        lambda: kf.numeric_jacobian(_rb, np.zeros(3), residual=[1]),
+    ],
+    ids=["ekf_update", "ukf_update", "ukf_predict-mean", "numeric_jacobian"],
+)
+def test_hook_that_is_not_callable(call):
+    with pytest.raises(ValueError, match=r"\b(residual|mean) must be callable"):
+        call()
+
+
+@pytest.mark.parametrize("kernel", [{"a": 1.0}, {None: 1.0}, {1: 1.5, 0: -0.5}], ids=["text", "none", "negative"])
+def test_bad_kernel_is_named(kernel):
+    with pytest.raises(ValueError, match=r"^kernel"):
+        kf.bayes_predict([0.5, 0.5], kernel)
+
+
+def test_empty_covariance():
+    with pytest.raises(ValueError, match=r"^Sig must not be empty"):
+        kf.kf_predict(np.zeros(0), np.zeros((0, 0)), None, np.zeros((0, 0)), None, np.zeros((0, 0)))

@@ -90,6 +90,7 @@ def associate(
     Q = v.covariance(Q, "Q", z.size)
     gate = v.variance(gate, "gate", positive=True)
     h, H = v.function(h, "h"), v.function(H, "H")
+    residual = v.optional_function(residual, "residual")
     dist = np.empty(lms.shape[0])
     for j, m in enumerate(lms):
         z_hat = v.output(h(mu_bar, m), "h", z.size)

@@ -11,7 +11,7 @@ from collections.abc import Callable
 import numpy as np
 
 from .. import _validate as v
-from .kalman import _correct, _gain
+from .kalman import _correct, _gain, _symmetric
 
 
 def ekf_predict(mu, Sig, u, g: Callable, G: Callable, R) -> tuple[np.ndarray, np.ndarray]:
@@ -47,7 +47,7 @@ def ekf_predict(mu, Sig, u, g: Callable, G: Callable, R) -> tuple[np.ndarray, np
     mu_bar = v.output(g(mu, u), "g", n)  # mu_bar = g(mu, u): the mean rides the real curve
     Gt = v.output_matrix(G(mu, u), "G", n, n)  # G at the previous mean
     Sig_bar = Gt @ Sig @ Gt.T + R  # Sig_bar = G Sig G^T + R: the covariance rides the tangent
-    return mu_bar, 0.5 * (Sig_bar + Sig_bar.T)
+    return mu_bar, _symmetric(Sig_bar)
 
 
 def ekf_update(
@@ -88,6 +88,7 @@ def ekf_update(
     k = z.size
     Q = v.covariance(Q, "Q", k)
     h, H = v.function(h, "h"), v.function(H, "H")
+    residual = v.optional_function(residual, "residual")
     z_hat = v.output(h(mu_bar), "h", k)  # predicted measurement h(mu_bar)
     Ht = v.output_matrix(H(mu_bar), "H", k, n)  # H at the predicted mean
     y = z - z_hat if residual is None else v.output(residual(z, z_hat), "residual", k)  # innovation

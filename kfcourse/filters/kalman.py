@@ -149,14 +149,14 @@ def _check_step_inputs(mu, Sig, u, F, B, R):
     mu = v.vector(mu, "mu")
     n = mu.size
     Sig = v.covariance(Sig, "Sig", n)
-    F = v.matrix(F, "F", n, n)
+    F = v.constant_matrix(F, "F", n, n)
     R = v.covariance(R, "R", n, constant=True)
     if B is None and u is None:
         return mu, Sig, None, F, None, R
     if B is None or u is None:
         raise ValueError("u and B must be given together (or both None for no control)")
     u = v.vector(u, "u")
-    B = v.matrix(B, "B", n, u.size)
+    B = v.constant_matrix(B, "B", n, u.size)
     return mu, Sig, u, F, B, R
 
 
@@ -165,25 +165,48 @@ def _check_update_inputs(mu_bar, Sig_bar, z, H, Q):
     n = mu_bar.size
     Sig_bar = v.covariance(Sig_bar, "Sig_bar", n)
     z = v.vector(z, "z")
-    H = v.matrix(H, "H", z.size, n)
+    H = v.constant_matrix(H, "H", z.size, n)
     Q = v.covariance(Q, "Q", z.size, constant=True)
     return mu_bar, Sig_bar, z, H, Q
 
 
 # The private helpers take checked float arrays; ``.dot`` costs less than ``@`` on small ones.
 def _predict(mu, Sig, u, F, B, R):
+    """The predict equations; Sig_bar is symmetric only up to rounding (see kf_predict)."""
     mu_bar = F.dot(mu)  # mu_bar = F mu + B u
     if B is not None:
         mu_bar = mu_bar + B.dot(u)
     Sig_bar = F.dot(Sig).dot(F.T) + R  # Sig_bar = F Sig F^T + R
-    return mu_bar, 0.5 * (Sig_bar + Sig_bar.T)
+    return mu_bar, Sig_bar
+
+
+def _symmetric(A):
+    """(A + A^T) / 2: rounding must not make a covariance lopsided."""
+    return v.produced(0.5 * (A + A.T))
+
+
+def _inverse(S):
+    """S^-1 for the innovation covariance; closed form for the common 1x1 and 2x2."""
+    k = S.shape[0]
+    if k == 1:
+        s = S[0, 0]
+        if s == 0.0:
+            raise np.linalg.LinAlgError
+        return np.array([[1.0 / s]])
+    if k == 2:
+        (a, b), (c, d) = S.tolist()
+        det = a * d - b * c
+        if det == 0.0:
+            raise np.linalg.LinAlgError
+        return np.array([[d / det, -b / det], [-c / det, a / det]])
+    return np.linalg.inv(S)
 
 
 def _gain(Sig_bar, H, Q):
     PHt = Sig_bar.dot(H.T)
     S = H.dot(PHt) + Q  # innovation covariance S = H Sig_bar H^T + Q
     try:
-        K = np.linalg.solve(S, PHt.T).T  # K = Sig_bar H^T S^-1  (S symmetric)
+        K = PHt.dot(_inverse(S))  # K = Sig_bar H^T S^-1
     except np.linalg.LinAlgError:
         raise ValueError("Q: the innovation covariance S = H Sig_bar H^T + Q is singular") from None
     return S, K
@@ -205,7 +228,7 @@ def _correct(mu_bar, Sig_bar, y, H, Q, K):
     mu = mu_bar + K.dot(y)  # mu = mu_bar + K y
     I_KH = _identity(mu_bar.size) - K.dot(H)
     Sig = I_KH.dot(Sig_bar).dot(I_KH.T) + K.dot(Q).dot(K.T)  # Joseph form of (I - K H) Sig_bar
-    return mu, 0.5 * (Sig + Sig.T)
+    return mu, _symmetric(Sig)
 
 
 def _update(mu_bar, Sig_bar, z, H, Q):
@@ -237,7 +260,8 @@ def kf_predict(mu, Sig, u, F, B, R) -> tuple[np.ndarray, np.ndarray]:
     -------
     (mu_bar, Sig_bar) : shapes (n,), (n, n)
     """
-    return _predict(*_check_step_inputs(mu, Sig, u, F, B, R))
+    mu_bar, Sig_bar = _predict(*_check_step_inputs(mu, Sig, u, F, B, R))
+    return mu_bar, _symmetric(Sig_bar)
 
 
 def kf_gain(Sig_bar, H, Q) -> tuple[np.ndarray, np.ndarray]:
@@ -305,8 +329,8 @@ def kf_step(mu, Sig, u, z, F, B, H, R, Q) -> tuple[np.ndarray, np.ndarray]:
     mu, Sig, u, F, B, R = _check_step_inputs(mu, Sig, u, F, B, R)
     mu_bar, Sig_bar = _predict(mu, Sig, u, F, B, R)
     if z is None:
-        return mu_bar, Sig_bar
+        return mu_bar, _symmetric(Sig_bar)
     z = v.vector(z, "z")
-    H = v.matrix(H, "H", z.size, mu.size)
+    H = v.constant_matrix(H, "H", z.size, mu.size)
     Q = v.covariance(Q, "Q", z.size, constant=True)
     return _update(mu_bar, Sig_bar, z, H, Q)

@@ -68,18 +68,27 @@ def _sigma_points(mu, Sig, lam, beta=0.0):
     return chi, wm, wc
 
 
-def _recombine(Y, wm, wc, residual, mean):
+def _differences(points, centre, residual, vectorized):
+    """Rows of ``points`` minus ``centre``, through the residual hook if there is one."""
+    if residual is None:
+        return points - centre
+    if vectorized:
+        return v.matrix(residual(points, centre), "the result of residual", *points.shape)
+    return np.array([residual(p, centre) for p in points], dtype=float)
+
+
+def _recombine(Y, wm, wc, residual, mean, vectorized=False):
     """Weighted mean and covariance of transformed points (rows of Y)."""
     y_mean = wm @ Y if mean is None else np.asarray(mean(Y, wm), dtype=float)  # sum w_i Y_i
-    if residual is None:
-        dY = Y - y_mean
-    else:
-        dY = np.array([residual(y, y_mean) for y in Y], dtype=float)
+    dY = _differences(Y, y_mean, residual, vectorized)
     cov = (wc[:, None] * dY).T @ dY  # sum w_i (Y_i - y)(Y_i - y)^T
     return y_mean, 0.5 * (cov + cov.T), dY
 
 
-def _push(f, chi, name, k=None):
+def _push(f, chi, name, k=None, vectorized=False):
+    """f at every sigma point: one call per point, or one call on all rows at once."""
+    if vectorized:
+        return v.matrix(f(chi), f"the result of {name}", chi.shape[0], k)
     Y = [v.vector(f(x), f"the result of {name}", k) for x in chi]
     if k is None and len({y.size for y in Y}) != 1:
         raise ValueError(f"{name} must return vectors of one length")
@@ -87,7 +96,13 @@ def _push(f, chi, name, k=None):
 
 
 def unscented_transform(
-    mu, Sig, f: Callable, lam: float, residual: Callable | None = None, mean: Callable | None = None
+    mu,
+    Sig,
+    f: Callable,
+    lam: float,
+    residual: Callable | None = None,
+    mean: Callable | None = None,
+    vectorized: bool = False,
 ) -> tuple[np.ndarray, np.ndarray]:
     r"""Push ``N(mu, Sig)`` through a nonlinear ``f`` with sigma points.
 
@@ -108,14 +123,19 @@ def unscented_transform(
         Difference of outputs (wrap angles here).
     mean : callable ``mean(points, weights) -> array (k,)``, optional
         Weighted mean of outputs (average angles on the circle here).
+    vectorized : bool
+        Call the model (and ``residual``) once with every sigma point as a row of
+        a ``(2n+1, n)`` array instead of once per point; the models in
+        :mod:`kfcourse.models` accept such stacks.  Same result, much faster.
 
     Returns
     -------
     (mu_y, Sig_y) : shapes (k,), (k, k)
     """
     f = v.function(f, "f")
+    residual, mean = v.optional_function(residual, "residual"), v.optional_function(mean, "mean")
     chi, wm, wc = sigma_points(mu, Sig, lam)
-    y_mean, cov, _ = _recombine(_push(f, chi, "f"), wm, wc, residual, mean)
+    y_mean, cov, _ = _recombine(_push(f, chi, "f", None, vectorized), wm, wc, residual, mean, vectorized)
     return y_mean, cov
 
 
@@ -151,7 +171,15 @@ def unscented_1d(mu: float, var: float, f: Callable, lam: float = 0.0) -> tuple[
 
 
 def ukf_predict(
-    mu, Sig, u, g: Callable, R, lam: float, residual: Callable | None = None, mean: Callable | None = None
+    mu,
+    Sig,
+    u,
+    g: Callable,
+    R,
+    lam: float,
+    residual: Callable | None = None,
+    mean: Callable | None = None,
+    vectorized: bool = False,
 ) -> tuple[np.ndarray, np.ndarray]:
     r"""UKF predict step: sigma points of the belief through the motion model.
 
@@ -174,6 +202,10 @@ def ukf_predict(
     residual, mean : callable, optional
         State difference and weighted state mean (for a heading, use
         :func:`kfcourse.models.pose_residual` and :func:`kfcourse.models.pose_mean`).
+    vectorized : bool
+        Call the model and the residual hooks once with every sigma point as a
+        row of a ``(2n+1, n)`` array instead of once per point (the models in
+        :mod:`kfcourse.models` accept such stacks).  Same result, much faster.
 
     Returns
     -------
@@ -183,10 +215,11 @@ def ukf_predict(
     n = mu.size
     R = v.covariance(R, "R", n, constant=True)
     g = v.function(g, "g")
+    residual, mean = v.optional_function(residual, "residual"), v.optional_function(mean, "mean")
     Sig = v.covariance(Sig, "Sig", n)
     chi, wm, wc = _sigma_points(mu, Sig, v.scalar(lam, "lam"))  # mu and Sig checked once
-    Y = _push(lambda x: g(x, u), chi, "g", n)
-    mu_bar, Sig_bar, _ = _recombine(Y, wm, wc, residual, mean)
+    Y = _push(lambda x: g(x, u), chi, "g", n, vectorized)
+    mu_bar, Sig_bar, _ = _recombine(Y, wm, wc, residual, mean, vectorized)
     return mu_bar, Sig_bar + R
 
 
@@ -200,6 +233,7 @@ def ukf_update(
     residual: Callable | None = None,
     mean: Callable | None = None,
     x_residual: Callable | None = None,
+    vectorized: bool = False,
 ) -> tuple[np.ndarray, np.ndarray]:
     r"""UKF update step: the gain from the cross-covariance of the sigma clouds.
 
@@ -227,6 +261,10 @@ def ukf_update(
         :func:`kfcourse.models.range_bearing_mean`).
     x_residual : callable, optional
         State difference, for the cross-covariance.
+    vectorized : bool
+        Call the model and the residual hooks once with every sigma point as a
+        row of a ``(2n+1, n)`` array instead of once per point (the models in
+        :mod:`kfcourse.models` accept such stacks).  Same result, much faster.
 
     Returns
     -------
@@ -237,12 +275,14 @@ def ukf_update(
     k = z.size
     Q = v.covariance(Q, "Q", k, constant=True)
     h = v.function(h, "h")
+    residual, mean = v.optional_function(residual, "residual"), v.optional_function(mean, "mean")
+    x_residual = v.optional_function(x_residual, "x_residual")
     Sig_bar = v.covariance(Sig_bar, "Sig_bar", mu_bar.size)  # checked here once, named Sig_bar
     chi, wm, wc = _sigma_points(mu_bar, Sig_bar, v.scalar(lam, "lam"))
-    Z = _push(h, chi, "h", k)
-    z_hat, S, dZ = _recombine(Z, wm, wc, residual, mean)
+    Z = _push(h, chi, "h", k, vectorized)
+    z_hat, S, dZ = _recombine(Z, wm, wc, residual, mean, vectorized)
     S = S + Q  # innovation covariance
-    dX = chi - mu_bar if x_residual is None else np.array([x_residual(x, mu_bar) for x in chi], dtype=float)
+    dX = _differences(chi, mu_bar, x_residual, vectorized)
     Sxz = (wc[:, None] * dX).T @ dZ  # cross-covariance Sig_xz
     try:
         K = np.linalg.solve(S, Sxz.T).T  # K = Sig_xz S^-1
