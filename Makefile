@@ -6,6 +6,7 @@ VENV   ?= .venv
 BIN    := $(VENV)/bin
 PORT   ?= 8888
 STAMP  := $(VENV)/.kfcourse-installed
+ROOT_FLAG := $(if $(filter 0,$(shell id -u)),--allow-root,)
 
 .PHONY: lab test lint bench notebooks pins clean
 
@@ -22,7 +23,7 @@ lab: $(STAMP)
 	@echo ""
 	$(BIN)/jupyter lab --no-browser --ServerApp.ip=127.0.0.1 --ServerApp.port=$(PORT) \
 	  --ServerApp.port_retries=0 --IdentityProvider.token='' \
-	  --PasswordIdentityProvider.hashed_password='' --ServerApp.root_dir=notebooks
+	  --PasswordIdentityProvider.hashed_password='' --ServerApp.root_dir=notebooks $(ROOT_FLAG)
 
 test: $(STAMP) lint
 	$(BIN)/pytest -m "not browser" -n 2 --dist loadfile --nbval-lax --nbval-current-env \
@@ -35,6 +36,7 @@ lint: $(STAMP)
 
 bench: $(STAMP)
 	$(BIN)/python benchmarks/bench_filters.py
+	$(BIN)/python benchmarks/bench_demos.py
 
 # Re-execute the notebooks and store the outputs of the NBVAL_CHECK_OUTPUT cells only.
 notebooks: $(STAMP)
