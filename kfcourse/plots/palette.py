@@ -11,11 +11,3 @@ TRUTH = "#a6a6a6"  # faint grey: the true state the robot never sees
 LANDMARK = PREDICTION  # purple squares on maps
 INK = "#333333"  # text and axes
 GRID = "#e6e6e6"
-
-ROLES = {
-    "prediction": PREDICTION,
-    "measurement": MEASUREMENT,
-    "estimate": ESTIMATE,
-    "truth": TRUTH,
-    "landmark": LANDMARK,
-}
