@@ -17,7 +17,8 @@ X_RANGE = (-6.0, 6.0)
 class TrustModel:
     """Model: a prediction N(mu_pred, var_pred) and a measurement N(z, var_meas)."""
 
-    def __init__(self, mu_pred: float = -1.0, var_pred: float = 1.0, z: float = 1.5, var_meas: float = 0.5):
+    # Variances start on the log sliders' grid (10^k, k a multiple of 0.05), so the readouts match the model.
+    def __init__(self, mu_pred: float = -1.0, var_pred: float = 1.0, z: float = 1.5, var_meas: float = 10**-0.5):
         self.mu_pred, self.var_pred, self.z, self.var_meas = mu_pred, var_pred, z, var_meas
 
     @property
