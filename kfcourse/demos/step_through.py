@@ -99,10 +99,10 @@ def step_through(seed: int = 0) -> Demo:
     meas = gaussian_curve(ax, x, MU0, VAR0, palette.MEASUREMENT, "measurement  N(z, Q)")
     post = gaussian_curve(ax, x, MU0, VAR0, palette.ESTIMATE, "belief  bel")
     zline = ax.axvline(MU0, color=palette.MEASUREMENT, lw=1, ls=":")
-    ax.legend(loc="upper left", fontsize=9)
+    legend = ax.legend(loc="upper left", fontsize=9)
     status = ax.text(0.99, 0.97, "", transform=ax.transAxes, ha="right", va="top", fontsize=10)
     curves = (before, pred, meas, post)
-    dynamic = [a for c in curves for a in c if a is not None] + [zline, status]
+    dynamic = [a for c in curves for a in c if a is not None] + [zline, status, legend]
     renderer = FigureRenderer(fig, dynamic)
     table = widgets.HTML()
 
@@ -118,6 +118,9 @@ def step_through(seed: int = 0) -> Demo:
         }[m.phase]
         params = (m.before, m.predicted or m.before, (m.z or 0.0, m.Q), (m.mu, m.var))
         peak = 0.0
+        for handle, label, visible in zip(legend.legend_handles, legend.get_texts(), shown, strict=True):
+            handle.set_alpha(1.0 if visible else 0.25)  # fade the entries of curves not shown now
+            label.set_alpha(1.0 if visible else 0.4)
         for curve, visible, (mu, var) in zip(curves, shown, params, strict=True):
             for artist in curve:
                 if artist is not None:
