@@ -49,7 +49,8 @@ def trust_slider(seed: int = 0) -> Demo:
     fused = gaussian_curve(ax, x, *model.fused(), palette.ESTIMATE, "fused")
     fused[0].set_linewidth(3)
     ax.legend(loc="upper left", fontsize=9)
-    info = ax.text(0.99, 0.97, "", transform=ax.transAxes, ha="right", va="top", fontsize=10)
+    ax.set_title("\u00a0\n\u00a0", fontsize=10)  # reserves room above the axes for the readout
+    info = ax.text(0.0, 1.02, "", transform=ax.transAxes, ha="left", va="bottom", fontsize=10)
     gauge = gain_gauge(ax_k, model.K)
     renderer = FigureRenderer(fig, [*pred, *meas, *fused, info, *gauge])
 
@@ -64,9 +65,9 @@ def trust_slider(seed: int = 0) -> Demo:
             renderer.invalidate()
         update_gain_gauge(gauge, model.K)
         info.set_text(
-            f"K = {model.var_pred:.3g} / ({model.var_pred:.3g} + {model.var_meas:.3g}) = {model.K:.3f}\n"
-            f"fused: μ = {mu_f:.3f}, σ² = {var_f:.3g}\n"
-            f"narrower than both: {var_f:.3g} < min({model.var_pred:.3g}, {model.var_meas:.3g})"
+            f"K = {model.var_pred:.3g} / ({model.var_pred:.3g} + {model.var_meas:.3g}) = {model.K:.3f}"
+            f"      fused: μ = {mu_f:.3f}, σ² = {var_f:.3g}\n"
+            f"σ² = {var_f:.3g} < min({model.var_pred:.3g}, {model.var_meas:.3g}): narrower than both inputs"
         )
 
     mu_pred = slider(widgets.FloatSlider, "prediction mean", model.mu_pred, -4.0, 4.0, 0.1)
