@@ -181,7 +181,8 @@ def _predict(mu, Sig, u, F, B, R):
 
 
 def _symmetric(A):
-    """(A + A^T) / 2: rounding must not make a covariance lopsided."""
+    """(A + A^T) / 2, so rounding cannot make a covariance lopsided; remembered as
+    :func:`produced` (callers pass only covariances that are PSD by construction)."""
     return v.produced(0.5 * (A + A.T))
 
 
