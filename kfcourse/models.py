@@ -117,16 +117,16 @@ def constant_velocity(dt: float, dim: int = 1) -> tuple[np.ndarray, np.ndarray]:
     return F, H
 
 
-def _poses(state) -> np.ndarray:
-    """A pose (3,) or a stack of poses (N, 3), one a row."""
-    s = v.finite(state, "state")
-    if s.shape[-1:] != (3,) or s.ndim > 2:
-        raise ValueError(f"state must have shape (3,) or (N, 3), got {s.shape}")
-    return s
+def _rows(x, name: str, n: int) -> np.ndarray:
+    """A vector (n,) or a stack of them (N, n), one a row."""
+    a = v.finite(x, name)
+    if a.shape[-1:] != (n,) or a.ndim > 2:
+        raise ValueError(f"{name} must have shape ({n},) or (N, {n}), got {a.shape}")
+    return a
 
 
 def _pose_control(state, u, dt):
-    return _poses(state), v.vector(u, "u", 2), v.variance(dt, "dt", positive=True)
+    return _rows(state, "state", 3), v.vector(u, "u", 2), v.variance(dt, "dt", positive=True)
 
 
 def unicycle(state, u, dt) -> np.ndarray:
@@ -162,8 +162,7 @@ def unicycle(state, u, dt) -> np.ndarray:
     x, y, th = s[..., 0], s[..., 1], s[..., 2]
     half = 0.5 * w * dt
     d = V * dt * np.sinc(half / np.pi)  # chord length: V dt sin(half)/half
-    out = np.stack([x + d * np.cos(th + half), y + d * np.sin(th + half), wrap_angle(th + w * dt)], axis=-1)
-    return out
+    return np.stack([x + d * np.cos(th + half), y + d * np.sin(th + half), wrap_angle(th + w * dt)], axis=-1)
 
 
 def unicycle_jacobian(state, u, dt) -> np.ndarray:
@@ -197,13 +196,14 @@ def unicycle_jacobian(state, u, dt) -> np.ndarray:
 
 
 def _offset(state, landmark):
-    s = v.vector(state, "state", 3)
+    """Pose(s) and the landmark's offset from them: (s, dx, dy, q), q the squared distance."""
+    s = _rows(state, "state", 3)
     m = v.vector(landmark, "landmark", 2)
-    dx, dy = m[0] - s[0], m[1] - s[1]
+    dx, dy = m[0] - s[..., 0], m[1] - s[..., 1]
     q = dx * dx + dy * dy  # squared distance
-    if q == 0.0:
+    if np.any(q == 0.0):
         raise ValueError("landmark must not sit exactly at the robot's position (bearing undefined)")
-    return dx, dy, q, s[2]
+    return s, dx, dy, q
 
 
 def range_bearing(state, landmark) -> np.ndarray:
@@ -226,12 +226,7 @@ def range_bearing(state, landmark) -> np.ndarray:
     ndarray, shape (2,) or (N, 2)
         ``[r, phi]``, bearing wrapped to (-pi, pi].
     """
-    s = _poses(state)
-    m = v.vector(landmark, "landmark", 2)
-    dx, dy = m[0] - s[..., 0], m[1] - s[..., 1]
-    q = dx * dx + dy * dy  # squared distance
-    if np.any(q == 0.0):
-        raise ValueError("landmark must not sit exactly at the robot's position (bearing undefined)")
+    s, dx, dy, q = _offset(state, landmark)
     return np.stack([np.sqrt(q), wrap_angle(np.arctan2(dy, dx) - s[..., 2])], axis=-1)
 
 
@@ -249,16 +244,11 @@ def range_bearing_jacobian(state, landmark) -> np.ndarray:
     -------
     ndarray, shape (2, 3)
     """
-    dx, dy, q, _ = _offset(state, landmark)
+    s, dx, dy, q = _offset(state, landmark)
+    if s.ndim != 1:
+        raise ValueError(f"state must have shape (3,), got {s.shape}")
     r = math.sqrt(q)
     return np.array([[-dx / r, -dy / r, 0.0], [dy / q, -dx / q, -1.0]])
-
-
-def _rows(x, name: str, n: int) -> np.ndarray:
-    a = v.finite(x, name)
-    if a.shape[-1:] != (n,) or a.ndim > 2:
-        raise ValueError(f"{name} must have shape ({n},) or (N, {n}), got {a.shape}")
-    return a
 
 
 def _angle_residual(a, b, index: int, n: int, name: str) -> np.ndarray:

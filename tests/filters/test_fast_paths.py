@@ -30,6 +30,8 @@ def test_models_take_stacks_of_poses():
     assert pose_residual(a, b) == pytest.approx(np.array([pose_residual(r, b) for r in a]))
     with pytest.raises(ValueError, match="state"):
         kf.unicycle(np.zeros((2, 4)), u, DT)
+    with pytest.raises(ValueError, match="state"):
+        kf.range_bearing_jacobian(poses, LANDMARK)  # a Jacobian is for one pose
 
 
 @pytest.mark.parametrize("lam", [0.0, 1.0, 2.0])
