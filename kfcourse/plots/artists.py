@@ -188,7 +188,7 @@ def landmarks(ax, positions, labels=False, color: str = palette.LANDMARK, **kwar
     points = ax.scatter(m[:, 0], m[:, 1], **style)
     texts = [
         ax.annotate(name, (mx, my), xytext=(6, 6), textcoords="offset points", color=color, fontsize=9)
-        for name, (mx, my) in zip(names, m, strict=True)
+        for name, (mx, my) in zip(names, m, strict=False)  # no labels: names is empty
     ]
     return points, texts
 
