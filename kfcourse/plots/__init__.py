@@ -7,31 +7,41 @@ about widgets.
 
 from . import palette
 from .artists import (
+    beams,
     belief_bars,
     covariance_ellipse,
     gain_gauge,
     gaussian_curve,
+    landmarks,
+    robot,
+    update_beams,
     update_belief_bars,
     update_covariance_ellipse,
     update_gain_gauge,
     update_gaussian_curve,
+    update_robot,
 )
 from .charts import convergence_chart, drift_chart, samples_chart
 from .style import FigureRenderer, new_figure
 
 __all__ = [
     "FigureRenderer",
+    "beams",
     "belief_bars",
     "convergence_chart",
     "covariance_ellipse",
     "drift_chart",
     "gain_gauge",
     "gaussian_curve",
+    "landmarks",
     "new_figure",
     "palette",
+    "robot",
     "samples_chart",
+    "update_beams",
     "update_belief_bars",
     "update_covariance_ellipse",
     "update_gain_gauge",
     "update_gaussian_curve",
+    "update_robot",
 ]

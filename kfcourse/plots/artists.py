@@ -1,13 +1,15 @@
 """Artists shared by the chapters: Gaussian curves, covariance ellipses, belief
-bars and the gain gauge.  Each takes an ``ax`` and returns what it drew; the
-matching ``update_*`` moves it in place.
+bars, the gain gauge, and the robot, its landmarks and its sensor beams.  Each
+takes an ``ax`` and returns what it drew; the matching ``update_*`` moves it in place.
 """
 
 from __future__ import annotations
 
 import numpy as np
-from matplotlib.patches import Ellipse, Rectangle
+from matplotlib.collections import LineCollection
+from matplotlib.patches import Ellipse, Polygon, Rectangle
 
+from .. import _validate as v
 from ..filters.gaussian import ellipse_axes, gaussian_pdf
 from . import palette
 
@@ -98,3 +100,135 @@ def update_gain_gauge(gauge, K: float) -> None:
     bar, text = gauge
     bar.set_width(float(np.clip(K, 0.0, 1.0)))
     text.set_text(f"K = {K:.3f}")
+
+
+# The robot's body in its own frame, in units of its size: a triangle whose nose points
+# along the heading (+x) and whose centroid, (1 - 0.5 - 0.5)/3 = 0, is the pose's position.
+_ROBOT_BODY = np.array([[1.0, 0.0], [-0.5, 0.5], [-0.5, -0.5]])
+
+
+def _robot_corners(pose, size: float) -> np.ndarray:
+    """Corners of the robot's triangle at ``pose``: rotate the body by theta, then shift."""
+    x, y, theta = v.vector(pose, "pose", 3)
+    c, s = np.cos(theta), np.sin(theta)
+    rotation = np.array([[c, -s], [s, c]])
+    return size * _ROBOT_BODY @ rotation.T + [x, y]  # p_world = R(theta) p_body + (x, y)
+
+
+def robot(ax, pose, color: str = palette.ESTIMATE, size: float = 0.4, **kwargs) -> Polygon:
+    """A robot at ``pose`` drawn as a triangle pointing along its heading.
+
+    Grey (``palette.TRUTH``) for the true pose, teal (``palette.ESTIMATE``) for the
+    filter's estimate.  Introduced in chapter 8.
+
+    Parameters
+    ----------
+    ax : matplotlib Axes
+    pose : array_like, shape (3,)
+        ``[x, y, theta]`` (m, m, rad).  The triangle's centroid sits at ``(x, y)``
+        and its nose ``size`` metres ahead of it along ``theta``.
+    color : str
+        Fill and edge colour.
+    size : float
+        Distance from the centre to the nose (m), > 0.
+    **kwargs
+        Passed to :class:`matplotlib.patches.Polygon` (e.g. ``alpha``, ``zorder``, ``label``).
+
+    Returns
+    -------
+    Polygon
+        Move it with :func:`update_robot`.
+    """
+    size = v.scalar(size, "size")
+    if size <= 0:
+        raise ValueError(f"size must be > 0 (m), got {size}")
+    style = {"closed": True, "facecolor": color, "edgecolor": color, "lw": 1.5, "zorder": 3} | kwargs
+    patch = Polygon(_robot_corners(pose, size), **style)
+    patch._kf_size = size
+    ax.add_patch(patch)
+    return patch
+
+
+def update_robot(patch: Polygon, pose) -> None:
+    """Move a robot made by :func:`robot` to ``pose`` (shape (3,)), in place."""
+    patch.set_xy(_robot_corners(pose, patch._kf_size))
+
+
+def landmarks(ax, positions, labels=False, color: str = palette.LANDMARK, **kwargs):
+    """The map's landmarks as purple squares.
+
+    Introduced in chapter 8.
+
+    Parameters
+    ----------
+    ax : matplotlib Axes
+    positions : array_like, shape (L, 2)
+        Landmark positions ``[mx, my]`` (m), one a row.
+    labels : bool or sequence of str
+        ``True`` writes each landmark's index next to it; a sequence of L strings
+        writes those; ``False`` writes nothing.
+    color : str
+    **kwargs
+        Passed to ``ax.scatter`` (e.g. ``s``, ``zorder``, ``label``).
+
+    Returns
+    -------
+    (points, texts) : the PathCollection of squares and a list of Text (empty without labels)
+    """
+    m = np.empty((0, 2)) if np.size(positions) == 0 else v.matrix(positions, "positions", cols=2)
+    if labels is True:
+        names = [str(i) for i in range(len(m))]
+    elif labels is False or labels is None:
+        names = []
+    else:
+        names = [str(name) for name in labels]
+        if len(names) != len(m):
+            raise ValueError(f"labels must name each of the {len(m)} landmarks, got {len(names)} labels")
+    style = {"marker": "s", "s": 60, "color": color, "zorder": 2} | kwargs
+    points = ax.scatter(m[:, 0], m[:, 1], **style)
+    texts = [
+        ax.annotate(name, (mx, my), xytext=(6, 6), textcoords="offset points", color=color, fontsize=9)
+        for name, (mx, my) in zip(names, m, strict=False)  # no labels: names is empty
+    ]
+    return points, texts
+
+
+def beams(ax, color: str = palette.ESTIMATE, **kwargs) -> LineCollection:
+    """Sensor beams from the robot to the landmarks it is using, empty at first.
+
+    Introduced in chapter 10.
+
+    Parameters
+    ----------
+    ax : matplotlib Axes
+    color : str
+    **kwargs
+        Passed to :class:`matplotlib.collections.LineCollection` (e.g. ``lw``, ``alpha``).
+
+    Returns
+    -------
+    LineCollection
+        Draw beams with :func:`update_beams`.
+    """
+    style = {"colors": color, "lw": 1.2, "alpha": 0.8, "zorder": 1} | kwargs
+    lines = LineCollection([], **style)
+    ax.add_collection(lines, autolim=False)  # beams never stretch the axes
+    return lines
+
+
+def update_beams(lines: LineCollection, pose, targets) -> None:
+    """Point beams made by :func:`beams` from ``pose`` to each of ``targets``, in place.
+
+    Parameters
+    ----------
+    lines : LineCollection
+    pose : array_like, shape (3,) or (2,)
+        The robot's pose ``[x, y, theta]`` (only ``x, y`` are used).
+    targets : array_like, shape (K, 2)
+        The landmarks in use; K = 0 (or an empty list) draws no beam.
+    """
+    start = v.finite(pose, "pose")
+    if start.shape not in ((2,), (3,)):
+        raise ValueError(f"pose must have shape (3,) or (2,), got {start.shape}")
+    ends = np.empty((0, 2)) if np.size(targets) == 0 else v.matrix(targets, "targets", cols=2)
+    lines.set_segments([np.array([start[:2], end]) for end in ends])  # one segment per beam

@@ -1,0 +1,261 @@
+"""A robot driving a loop through a map of landmarks (chapters 8-10).
+
+The robot executes its commanded controls exactly, so its true path is the clean
+loop the controls describe.  What the filter is told is the *odometry*: the true
+control plus Gaussian noise, ``[V, omega] + [v_std, omega_std] * e``.  A filter that
+only integrates odometry (dead reckoning) therefore drifts away from the truth, and
+the landmark readings pull it back.  No filter runs here: this module only makes data.
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass
+
+import numpy as np
+
+from .. import _validate as v
+from ..models import range_bearing, unicycle, wrap_angle
+
+
+def _read_only(a, dtype=float) -> np.ndarray:
+    a = np.array(a, dtype=dtype)  # a copy, so nobody else holds a writeable view
+    a.flags.writeable = False
+    return a
+
+
+# The default map: six landmarks around the default loop of :func:`loop_controls`
+# (x from -4 to 4 m, y from 0 to 5 m) and one in its middle, so that with the default
+# 4 m sensor range the robot sees one to three landmarks wherever it is.
+DEFAULT_LANDMARKS = _read_only(
+    [
+        [-5.5, -1.0],  # m
+        [0.0, -1.5],
+        [5.5, -1.0],
+        [5.5, 6.0],
+        [0.0, 6.5],
+        [-5.5, 6.0],
+        [0.0, 2.5],
+    ]
+)
+
+
+@dataclass(frozen=True)
+class RobotRun:
+    """One simulated drive; every array has one row per time step ``k = 0 .. T-1``.
+
+    Step ``k`` applies control ``u[k]`` for ``dt`` seconds, moving the robot from
+    ``truth[k-1]`` (``start`` for k = 0) to ``truth[k]``, then takes the scan
+    ``z[k]`` from ``truth[k]``.  A filter starts at ``start``, predicts with
+    ``odometry[k]`` and updates with the readings ``z[k, visible[k]]``.
+    """
+
+    t: np.ndarray  #: (T,) time of each pose (s): (k + 1) dt
+    dt: float  #: time step (s)
+    u: np.ndarray  #: (T, 2) commanded controls [V, omega] (m/s, rad/s); the robot executes these
+    odometry: np.ndarray  #: (T, 2) the controls the filter is told: u plus noise
+    start: np.ndarray  #: (3,) pose before the first step [x, y, theta]
+    truth: np.ndarray  #: (T, 3) true pose after each step
+    landmarks: np.ndarray  #: (L, 2) landmark positions [mx, my] (m)
+    visible: np.ndarray  #: (T, L) bool: landmark within sensor range of the true pose
+    z: np.ndarray  #: (T, L, 2) readings [r, phi] (m, rad), bearing in (-pi, pi]; zeros where not visible
+    sensor_range: float  #: the sensor sees landmarks at most this far away (m)
+    v_std: float  #: odometry speed noise (m/s)
+    omega_std: float  #: odometry turn-rate noise (rad/s)
+    range_std: float  #: range noise (m)
+    bearing_std: float  #: bearing noise (rad)
+    seed: int
+
+
+def _std(x, name: str, unit: str) -> float:
+    """A finite standard deviation, >= 0."""
+    s = v.scalar(x, name)
+    if s < 0:
+        raise ValueError(f"{name} is a standard deviation and must be >= 0 ({unit}), got {s}")
+    return s
+
+
+def _positive(x, name: str, unit: str) -> float:
+    s = v.scalar(x, name)
+    if s <= 0:
+        raise ValueError(f"{name} must be > 0 ({unit}), got {s}")
+    return s
+
+
+def _whole(x, name: str, least: int) -> int:
+    if isinstance(x, bool) or not isinstance(x, (int, np.integer)) or x < least:
+        raise ValueError(f"{name} must be a whole number >= {least}, got {x!r}")
+    return int(x)
+
+
+def loop_controls(
+    length: float = 8.0, width: float = 5.0, radius: float = 1.0, speed: float = 1.0, dt: float = 0.2, laps: int = 1
+) -> np.ndarray:
+    r"""Controls that drive a unicycle around a rounded rectangle, counter-clockwise.
+
+    Starting at the middle of the bottom side heading along +x, the robot drives
+    straight at ``speed``, turns left through 90° on each corner with a constant
+    turn rate, and comes back to where it started.  With ``length = width = 2 radius``
+    the loop is a circle.  From the start pose ``(0, 0, 0)`` the loop spans
+    x in [-length/2, length/2] and y in [0, width].
+
+    Each corner takes ``n`` whole steps with :math:`\omega = (\pi/2) / (n\,\Delta t)`,
+    so the heading turns exactly 90°; the arc radius is then :math:`V/\omega`, close
+    to ``radius``.  Opposite sides take the same number of steps, so the loop closes.
+    Introduced in chapter 10.
+
+    Parameters
+    ----------
+    length, width : float
+        Outer size of the loop (m), each >= 2 radius.
+    radius : float
+        Corner radius (m), > 0.
+    speed : float
+        Forward speed V (m/s), > 0.
+    dt : float
+        Time step (s), > 0.
+    laps : int
+        Number of times round the loop (>= 1).
+
+    Returns
+    -------
+    ndarray, shape (T, 2)
+        One control ``[V, omega]`` (m/s, rad/s) per step.
+    """
+    radius = _positive(radius, "radius", "m")
+    length = v.scalar(length, "length")
+    width = v.scalar(width, "width")
+    for name, side in (("length", length), ("width", width)):
+        if side < 2 * radius:
+            raise ValueError(f"{name} must be at least 2 radius = {2 * radius} m, got {side}")
+    speed = _positive(speed, "speed", "m/s")
+    dt = _positive(dt, "dt", "s")
+    laps = _whole(laps, "laps", 1)
+    step = speed * dt  # m driven per step
+    n_turn = max(1, round((math.pi / 2) * radius / step))  # steps per quarter circle
+    n_long = round((length - 2 * radius) / step)  # steps along a long straight
+    n_short = round((width - 2 * radius) / step)
+    straight = [speed, 0.0]
+    turn = [speed, (math.pi / 2) / (n_turn * dt)]  # omega: 90 degrees in n_turn steps
+    half = n_long // 2
+    lap = (
+        [straight] * half
+        + [turn] * n_turn
+        + [straight] * n_short
+        + [turn] * n_turn
+        + [straight] * n_long
+        + [turn] * n_turn
+        + [straight] * n_short
+        + [turn] * n_turn
+        + [straight] * (n_long - half)
+    )
+    return np.array(lap * laps, dtype=float)
+
+
+def simulate_robot(
+    u=None,
+    dt: float = 0.2,
+    start=(0.0, 0.0, 0.0),
+    landmarks=None,
+    sensor_range: float = 4.0,
+    v_std: float = 0.1,
+    omega_std: float = 0.05,
+    range_std: float = 0.1,
+    bearing_std: float = 0.03,
+    seed: int = 0,
+) -> RobotRun:
+    r"""Drive a unicycle robot under controls ``u``; record noisy odometry and landmark readings.
+
+    Truth: :math:`x_k = g(x_{k-1}, u_k)` with :func:`~kfcourse.models.unicycle`
+    (the robot does exactly what it is told).  Odometry, the control the filter
+    is told: :math:`\tilde u_k = u_k + (\sigma_V e_{k,0},\, \sigma_\omega e_{k,1})`.
+    Readings, for every landmark :math:`m_j` within ``sensor_range`` of :math:`x_k`:
+    :math:`z_{k,j} = h(x_k, m_j) + (\sigma_r \epsilon_{k,j,0},\, \sigma_\phi \epsilon_{k,j,1})`,
+    bearing wrapped to :math:`(-\pi, \pi]`, with :func:`~kfcourse.models.range_bearing`.
+    All e and ε are independent standard normal draws.  A very noisy range can come
+    out negative: the Gaussian model says so, and nothing is clipped.
+
+    The draws depend only on ``seed``, the number of steps and the number of
+    landmarks, so changing a ``*_std`` rescales the same noise: a slider changes the
+    picture smoothly.  Introduced in chapter 10 (used from chapter 8).
+
+    Parameters
+    ----------
+    u : array_like, shape (T, 2), optional
+        Commanded controls ``[V, omega]`` (m/s, rad/s); by default one lap of
+        :func:`loop_controls` with this ``dt``.
+    dt : float
+        Time step (s), > 0.
+    start : array_like, shape (3,)
+        Pose ``[x, y, theta]`` before the first step.
+    landmarks : array_like, shape (L, 2), optional
+        The map (m); by default :data:`DEFAULT_LANDMARKS`.  L may be 0.
+    sensor_range : float
+        Largest range at which a landmark is seen (m), > 0.
+    v_std, omega_std : float
+        Odometry noise on the speed (m/s) and the turn rate (rad/s), >= 0.
+    range_std, bearing_std : float
+        Reading noise on the range (m) and the bearing (rad), >= 0.
+    seed : int
+        Seed of the random generator (>= 0).
+
+    Returns
+    -------
+    RobotRun
+    """
+    dt = _positive(dt, "dt", "s")
+    u = loop_controls(dt=dt) if u is None else v.matrix(u, "u", cols=2)
+    if len(u) == 0:
+        raise ValueError("u must hold at least one control, got none")
+    start = v.vector(start, "start", 3)
+    if landmarks is None:
+        m = DEFAULT_LANDMARKS
+    elif np.size(landmarks) == 0:
+        m = np.empty((0, 2))  # an empty map: nothing to see
+    else:
+        m = v.matrix(landmarks, "landmarks", cols=2)
+    sensor_range = _positive(sensor_range, "sensor_range", "m")
+    v_std = _std(v_std, "v_std", "m/s")
+    omega_std = _std(omega_std, "omega_std", "rad/s")
+    range_std = _std(range_std, "range_std", "m")
+    bearing_std = _std(bearing_std, "bearing_std", "rad")
+    seed = _whole(seed, "seed", 0)
+    n_steps, n_marks = len(u), len(m)
+
+    rng = np.random.default_rng(seed)
+    e = rng.standard_normal((n_steps, 2))  # odometry draws
+    eps = rng.standard_normal((n_steps, n_marks, 2))  # reading draws
+
+    truth = np.empty((n_steps, 3))
+    pose = start
+    for k in range(n_steps):
+        pose = unicycle(pose, u[k], dt)  # x_k = g(x_{k-1}, u_k)
+        truth[k] = pose
+    odometry = u + [v_std, omega_std] * e  # u~_k = u_k + noise
+
+    z = np.zeros((n_steps, n_marks, 2))
+    visible = np.zeros((n_steps, n_marks), dtype=bool)
+    for j in range(n_marks):
+        h = range_bearing(truth, m[j])  # (T, 2): [r, phi] from every true pose to landmark j
+        noisy = h + [range_std, bearing_std] * eps[:, j]  # z = h(x, m_j) + noise
+        noisy[:, 1] = wrap_angle(noisy[:, 1])
+        visible[:, j] = h[:, 0] <= sensor_range
+        z[visible[:, j], j] = noisy[visible[:, j]]
+
+    return RobotRun(
+        t=_read_only(dt * np.arange(1, n_steps + 1)),
+        dt=dt,
+        u=_read_only(u),
+        odometry=_read_only(odometry),
+        start=_read_only(start),
+        truth=_read_only(truth),
+        landmarks=_read_only(m),
+        visible=_read_only(visible, dtype=bool),
+        z=_read_only(z),
+        sensor_range=sensor_range,
+        v_std=v_std,
+        omega_std=omega_std,
+        range_std=range_std,
+        bearing_std=bearing_std,
+        seed=seed,
+    )
