@@ -3,6 +3,8 @@ the animation stepped; the model changes as it should and nothing drawn is NaN."
 
 from __future__ import annotations
 
+import pickle
+
 import ipywidgets as widgets
 import numpy as np
 import pytest
@@ -12,6 +14,7 @@ from matplotlib.patches import Patch
 from matplotlib.text import Text
 
 import kfcourse as kf
+from kfcourse.demos.hallway import DOORS
 
 DEMOS = ["raw_vs_filtered", "hallway", "covariance_ellipse", "step_through", "trust_slider"]
 
@@ -39,12 +42,17 @@ def plotted_arrays(fig):
                 assert "inf" not in artist.get_text().replace("info", ""), artist.get_text()
 
 
-def assert_finite(demo):
+def assert_finite(demo, what: str = "the first picture"):
     arrays = list(plotted_arrays(demo.renderer.fig))
-    assert arrays
+    assert arrays, what
     for a in arrays:
-        assert np.isfinite(a).all()
-    assert bytes(demo.image.value[:4]) == b"\x89PNG"
+        assert np.isfinite(a).all(), f"not finite after {what}"
+    assert bytes(demo.image.value[:4]) == b"\x89PNG", what
+
+
+def model_state(demo) -> bytes:
+    """Everything the model holds, as bytes, to tell whether an action changed it."""
+    return pickle.dumps(vars(demo.model))
 
 
 def sliders(demo):
@@ -81,25 +89,41 @@ def test_every_slider_at_min_max_and_middle(name):
                 continue
             control.value = value
             assert bytes(demo.image.value) != bytes(before), f"{key}={value} did not change the picture"
-            assert_finite(demo)
+            assert_finite(demo, f"{key} = {value}")
 
 
-@pytest.mark.parametrize("name", DEMOS)
-def test_every_button(name):
-    demo = make(name)
-    for key, control in buttons(demo).items():
-        control.click()
-        assert_finite(demo), key
+@pytest.mark.parametrize("name", [n for n in DEMOS if buttons(make(n))])
+def test_every_button_changes_the_picture_or_the_model(name):
+    for key in buttons(make(name)):
+        demo = make(name)
+        for other_key, other in buttons(demo).items():  # leave the first state (Reset at the start does nothing)
+            if other_key != key:
+                other.click()
+        picture, state = bytes(demo.image.value), model_state(demo)
+        demo.controls[key].click()
+        changed = bytes(demo.image.value) != picture or model_state(demo) != state
+        assert changed, f"{key} changed neither the picture nor the model"
+        assert_finite(demo, f"{key} pressed")
 
 
 def test_raw_vs_filtered_animation_and_noise():
     demo = make("raw_vs_filtered")
     frame = demo.controls["frame"]
-    assert isinstance(demo.controls["play"], widgets.Play)
-    assert demo.controls["play"].max == frame.max
+    assert isinstance(demo.controls["play"], widgets.ToggleButton)
+    assert frame.max == demo.model.run.t.size - 1
+    frame.value = 10
+    assert demo.model.frame == 10
+    before = bytes(demo.image.value)
+    assert demo.step()
+    assert demo.model.frame == frame.value == 11
+    assert bytes(demo.image.value) != before  # one more ping drawn
+    demo.controls["play"].value = True  # no event loop here: Run switches itself off, nothing moves
+    assert demo.controls["play"].value is False and demo.model.frame == 11
     frame.value = 10
     assert demo.model.frame == 10
     frame.value = frame.max
+    assert demo.model.frame == frame.max
+    assert not demo.step()  # the last frame: nothing to advance
     assert demo.model.frame == frame.max
     demo.controls["sensor_noise"].value = demo.controls["sensor_noise"].max
     raw, filt = demo.model.rms_errors()
@@ -130,12 +154,20 @@ def test_hallway_predict_update_reset():
         demo.controls["update"].click()
         assert m.belief.sum() == pytest.approx(1.0)
         assert np.isfinite(m.belief).all()
+    # Perfect motion on a ring: Predict shifts the belief and the robot exactly one cell right,
+    # and Update is Bayes' rule with the likelihood of what the sensor read.
     demo.controls["sensor_reliability"].value = demo.controls["sensor_reliability"].max
     demo.controls["motion_reliability"].value = 1.0
     for _ in range(6):
+        prior, cell = m.belief.copy(), m.true_cell
         demo.controls["predict"].click()
+        assert m.belief == pytest.approx(np.roll(prior, 1))
+        assert m.true_cell == (cell + 1) % prior.size
+        prior = m.belief.copy()
         demo.controls["update"].click()
-    assert m.belief.argmax() == m.true_cell or m.belief.max() < 0.9
+        likelihood = kf.sim.door_likelihood(DOORS, m.saw_door, m.sensor_reliability)
+        assert m.likelihood == pytest.approx(likelihood)
+        assert m.belief == pytest.approx(prior * likelihood / np.sum(prior * likelihood))
     demo.controls["reset"].click()
     demo.controls["motion_reliability"].value = 0.8
     demo.controls["sensor_reliability"].value = 0.8
