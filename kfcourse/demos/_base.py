@@ -26,6 +26,7 @@ import ipywidgets as widgets
 from ..plots.style import FigureRenderer
 
 FRAME_INTERVAL = 0.08  # s between frames while running: 12.5 pictures a second
+FRAME_GAP = 0.02  # s the kernel always rests between frames, to hear Pause and slider moves
 
 
 class Demo(widgets.VBox):
@@ -184,7 +185,7 @@ class Demo(widgets.VBox):
             n = 1 + int((loop.time() - t0) / FRAME_INTERVAL)  # frames real time asks for since start
             self.step(max(start + n - frame.value, 1))  # a slow render skips frames instead of lagging
             shown = frame.value
-            await asyncio.sleep(max(0.0, t0 + n * FRAME_INTERVAL - loop.time()))
+            await asyncio.sleep(max(FRAME_GAP, t0 + n * FRAME_INTERVAL - loop.time()))
             if frame.value != shown:  # scrubbed while running: restart the clock from there
                 start, t0 = frame.value, loop.time()
         self._task = None

@@ -3,6 +3,7 @@ the animation stepped; the model changes as it should and nothing drawn is NaN."
 
 from __future__ import annotations
 
+import asyncio
 import pickle
 
 import ipywidgets as widgets
@@ -226,3 +227,48 @@ def test_trust_gauge_and_narrowing():
     demo.controls["var_meas"].value = 0.01
     assert m.K > 0.99
     assert m.fused()[0] == pytest.approx(m.z, abs=0.01)
+
+
+def test_run_plays_to_the_end_on_an_event_loop(monkeypatch):
+    monkeypatch.setattr(kf.demos._base, "FRAME_INTERVAL", 0.001)
+    monkeypatch.setattr(kf.demos._base, "FRAME_GAP", 0.0)
+    demo = make("raw_vs_filtered")
+    play, frame = demo.controls["play"], demo.controls["frame"]
+    frame.value = frame.max - 20
+    shown = []
+    demo.image.observe(lambda _: shown.append(demo.model.frame), "value")
+
+    async def run_and_wait():
+        play.value = True
+        assert play.description == "Pause"
+        while play.value:
+            await asyncio.sleep(0.01)
+
+    asyncio.run(run_and_wait())
+    assert demo.model.frame == frame.max and play.description == "Run"
+    assert shown == sorted(shown) and shown[-1] == frame.max  # forward only, possibly skipping frames
+    asyncio.run(run_and_wait())  # Run at the last frame starts again from the first
+    assert shown.count(0) == 1 and demo.model.frame == frame.max
+
+
+def test_pause_stops_before_the_next_frame(monkeypatch):
+    monkeypatch.setattr(kf.demos._base, "FRAME_INTERVAL", 0.001)
+    demo = make("raw_vs_filtered")
+    play, frame = demo.controls["play"], demo.controls["frame"]
+    frame.value = 0
+    paused_at = []
+
+    def pause(_) -> None:
+        if demo.model.frame >= 5 and play.value:
+            play.value = False
+            paused_at.append(demo.model.frame)
+
+    demo.image.observe(pause, "value")
+
+    async def run_then_wait():
+        play.value = True
+        await asyncio.sleep(0.3)  # time for many more frames, were it still running
+
+    asyncio.run(run_then_wait())
+    assert len(paused_at) == 1 and demo.model.frame == paused_at[0] < frame.max
+    assert play.description == "Run"
