@@ -1,44 +1,99 @@
-"""What every demo shares: a caption, the picture, the controls.
+"""What every demo shares: a caption, the picture, the controls, and Run/Pause.
 
-A demo is a small model/view pair.  Controls change the model; ``refresh``
-updates the figure's artists in place and re-renders only what moves.
+A demo is a small model/view pair.  Each control is bound to a model method:
+a slider or toggle to a setter called with the new value, a button to an action
+called with nothing.  After every call the demo redraws by itself: ``draw``
+updates the figure's artists from the model and the renderer re-renders only
+what moves.  A new demo is then a model, a draw function and a list of controls::
+
+    Demo(
+        name="my-demo",
+        caption="<b>My demo.</b> ...",
+        model=model,
+        renderer=FigureRenderer(fig, dynamic=[line]),
+        draw=draw,
+        controls={"noise": (slider(...), model.set_noise), "again": (button("Again"), model.new_run)},
+    )
 """
 
 from __future__ import annotations
 
+import asyncio
 from collections.abc import Callable
 
 import ipywidgets as widgets
 
 from ..plots.style import FigureRenderer
 
+FRAME_INTERVAL = 0.08  # s between frames while running: 12.5 pictures a second
+FRAME_GAP = 0.02  # s the kernel always rests between frames, to hear Pause and slider moves
+
 
 class Demo(widgets.VBox):
     """A demo widget: caption, picture, controls.
 
+    Parameters
+    ----------
+    name : str
+        Short name; the widget gets the CSS classes ``kf-demo`` and ``kf-demo-<name>``.
+    caption : str
+        HTML shown above the picture.
+    model : object
+        The demo's state.  With ``frames`` it needs an integer attribute ``frame``.
+    renderer : FigureRenderer
+        The figure and its moving (``dynamic``) artists.
+    draw : callable
+        ``draw()`` updates the artists from the model.
+    controls : dict[str, (ipywidgets.Widget, callable)]
+        Each control by name with the model method it is bound to: a button calls
+        ``action()``, any other widget calls ``setter(new_value)``.
+    layout : list, optional
+        The rows under the picture; each row is a list of control names (or
+        widgets, e.g. a table that ``draw`` fills), or a single one.  By default
+        one row per control.
+    frames : int, optional
+        Number of animation frames.  Adds the controls ``play`` (Run/Pause) and
+        ``frame`` (a slider to scrub); they set ``model.frame``.
+
     Attributes
     ----------
     model : object
-        The demo's state (a run record and a frame, a belief, ...).
     controls : dict[str, ipywidgets.Widget]
         Every slider, button and toggle, by name (tests drive them through this).
     renderer : FigureRenderer
         Turns the figure into PNG bytes.
+    image : ipywidgets.Image
+        The picture.
     """
 
     def __init__(
-        self, name: str, caption: str, model, renderer: FigureRenderer, draw: Callable[[], None], rows, controls
+        self,
+        *,
+        name: str,
+        caption: str,
+        model,
+        renderer: FigureRenderer,
+        draw: Callable[[], None],
+        controls: dict,
+        layout: list | None = None,
+        frames: int | None = None,
     ):
         self.model = model
         self.renderer = renderer
-        self.controls = dict(controls)
         self._draw = draw
+        self._task = None
+        bound = dict(controls)
+        if frames is not None:
+            bound = {**self._player(frames), **bound}
+        self.controls = {key: control for key, (control, _) in bound.items()}
+        for key, (control, method) in bound.items():
+            control.add_class(f"kf-control-{key}")
+            self._bind(control, method)
         self.image = widgets.Image(format="png")
         self.image.add_class("kf-figure")
         cap = widgets.HTML(f"<div style='color:#333;font-size:13px;line-height:1.4'>{caption}</div>")
         cap.add_class("kf-caption")
-        for key, control in self.controls.items():
-            control.add_class(f"kf-control-{key}")
+        rows = [self._row(row) for row in (layout if layout is not None else list(self.controls))]
         super().__init__([cap, self.image, *rows])
         self.add_class("kf-demo")
         self.add_class(f"kf-demo-{name}")
@@ -49,9 +104,96 @@ class Demo(widgets.VBox):
         self._draw()
         self.image.value = self.renderer.png()
 
+    def _bind(self, control: widgets.Widget, method: Callable | None) -> None:
+        if method is None:
+            return
+        if isinstance(control, widgets.Button):
+
+            def on_click(_) -> None:
+                method()
+                self.refresh()
+
+            control.on_click(on_click)
+        else:
+
+            def on_change(change) -> None:
+                method(change["new"])
+                self.refresh()
+
+            control.observe(on_change, "value")
+
+    def _row(self, row) -> widgets.Widget:
+        items = row if isinstance(row, list | tuple) else [row]
+        children = [self.controls[item] if isinstance(item, str) else item for item in items]
+        return children[0] if len(children) == 1 else widgets.HBox(children)
+
+    # --- Run/Pause -------------------------------------------------------------------------------
+    # The kernel drives the animation: a task on the kernel's event loop sets the frame, renders,
+    # then sleeps.  Frames never queue up anywhere: a slow render makes the next frame skip ahead
+    # to keep real time, and Pause takes effect before the next frame is drawn.
+
+    def _player(self, n_frames: int) -> dict:
+        play = widgets.ToggleButton(
+            value=False, description="Run", icon="play", tooltip="Run / pause time", layout=widgets.Layout(width="90px")
+        )
+        frame = widgets.IntSlider(
+            value=self.model.frame, min=0, max=n_frames - 1, description="step", layout=widgets.Layout(width="340px")
+        )
+        play.observe(self._on_play, "value")
+        return {"play": (play, None), "frame": (frame, self._set_frame)}
+
+    def _set_frame(self, k: int) -> None:
+        self.model.frame = int(k)
+
+    def step(self, frames: int = 1) -> bool:
+        """Advance the animation by ``frames`` (at most to the last frame) and redraw.
+
+        Returns
+        -------
+        bool
+            False if already at the last frame (nothing changed).
+        """
+        frame = self.controls["frame"]
+        if frame.value >= frame.max:
+            return False
+        frame.value = min(frame.value + frames, frame.max)
+        return True
+
+    def _on_play(self, change) -> None:
+        play = self.controls["play"]
+        play.description, play.icon = ("Pause", "pause") if change["new"] else ("Run", "play")
+        if self._task is not None:
+            self._task.cancel()
+            self._task = None
+        if not change["new"]:
+            return
+        try:
+            loop = asyncio.get_running_loop()
+        except RuntimeError:  # no event loop (a plain script or test): use step() instead
+            play.value = False
+            return
+        frame = self.controls["frame"]
+        if frame.value >= frame.max:
+            frame.value = frame.min  # Run at the end starts again
+        self._task = loop.create_task(self._run(loop))
+
+    async def _run(self, loop: asyncio.AbstractEventLoop) -> None:
+        """Show one frame per FRAME_INTERVAL until paused or at the last frame."""
+        frame = self.controls["frame"]
+        start, t0 = frame.value, loop.time()
+        while self.controls["play"].value and frame.value < frame.max:
+            n = 1 + int((loop.time() - t0) / FRAME_INTERVAL)  # frames real time asks for since start
+            self.step(max(start + n - frame.value, 1))  # a slow render skips frames instead of lagging
+            shown = frame.value
+            await asyncio.sleep(max(FRAME_GAP, t0 + n * FRAME_INTERVAL - loop.time()))
+            if frame.value != shown:  # scrubbed while running: restart the clock from there
+                start, t0 = frame.value, loop.time()
+        self._task = None
+        self.controls["play"].value = False
+
 
 def slider(cls, description: str, value, min, max, step, readout_format: str = ".2f", **kwargs):
-    """A slider that only reports on release-free drags as the value changes."""
+    """A slider that reports every value while it is dragged."""
     return cls(
         value=value,
         min=min,
@@ -68,13 +210,3 @@ def slider(cls, description: str, value, min, max, step, readout_format: str = "
 
 def button(description: str, icon: str = "", tooltip: str = "") -> widgets.Button:
     return widgets.Button(description=description, icon=icon, tooltip=tooltip, layout=widgets.Layout(width="110px"))
-
-
-def play(n_frames: int, interval_ms: int = 90):
-    """A Play widget and a frame slider linked in the browser (scrub with the slider)."""
-    player = widgets.Play(value=0, min=0, max=n_frames - 1, step=1, interval=interval_ms, description="Run")
-    frame = widgets.IntSlider(
-        value=0, min=0, max=n_frames - 1, description="step", layout=widgets.Layout(width="340px")
-    )
-    widgets.jslink((player, "value"), (frame, "value"))
-    return player, frame

@@ -29,6 +29,15 @@ class CovarianceModel:
         c = self.rho * np.sqrt(self.var_x * self.var_y)  # covariance = rho sigma_x sigma_y
         return np.array([[self.var_x, c], [c, self.var_y]])
 
+    def set_var_x(self, var_x: float) -> None:
+        self.var_x = var_x
+
+    def set_var_y(self, var_y: float) -> None:
+        self.var_y = var_y
+
+    def set_rho(self, rho: float) -> None:
+        self.rho = rho
+
     def samples(self) -> np.ndarray:
         """x = L w with L L^T = Σ: the same draws reshaped by the current Σ."""
         return self.white @ np.linalg.cholesky(self.Sig).T
@@ -86,28 +95,21 @@ def covariance_ellipse(seed: int = 0) -> Demo:
             f"inside samples theory\n{rows}"
         )
 
-    var_x = slider(widgets.FloatSlider, "σx²", model.var_x, 0.1, 4.0, 0.1)
-    var_y = slider(widgets.FloatSlider, "σy²", model.var_y, 0.1, 4.0, 0.1)
-    rho = slider(widgets.FloatSlider, "ρ", model.rho, -0.95, 0.95, 0.05)
     caption = (
         "<b>Covariance ellipse.</b> Dots: 1000 samples of N(0, Σ); teal: the 1σ, 2σ, 3σ contours. "
         "σx² and σy² stretch the ellipse, ρ tilts it; the table compares the share of samples inside "
         "each contour with theory (1 − e<sup>−k²/2</sup> in 2-D)."
     )
-    demo = Demo(
-        "covariance-ellipse",
-        caption,
-        model,
-        renderer,
-        draw,
-        [widgets.HBox([var_x, var_y]), rho],
-        {"var_x": var_x, "var_y": var_y, "rho": rho},
+    return Demo(
+        name="covariance-ellipse",
+        caption=caption,
+        model=model,
+        renderer=renderer,
+        draw=draw,
+        controls={
+            "var_x": (slider(widgets.FloatSlider, "σx²", model.var_x, 0.1, 4.0, 0.1), model.set_var_x),
+            "var_y": (slider(widgets.FloatSlider, "σy²", model.var_y, 0.1, 4.0, 0.1), model.set_var_y),
+            "rho": (slider(widgets.FloatSlider, "ρ", model.rho, -0.95, 0.95, 0.05), model.set_rho),
+        },
+        layout=[["var_x", "var_y"], "rho"],
     )
-
-    def on_change(_) -> None:
-        model.var_x, model.var_y, model.rho = var_x.value, var_y.value, rho.value
-        demo.refresh()
-
-    for control in (var_x, var_y, rho):
-        control.observe(on_change, "value")
-    return demo

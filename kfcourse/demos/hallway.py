@@ -50,6 +50,17 @@ class HallwayModel:
         self.belief, self.eta = bayes_update(self.belief, self.likelihood, return_eta=True)
         self.phase = "updated"
 
+    def set_motion_reliability(self, p: float) -> None:
+        self.motion_reliability = p
+
+    def set_sensor_reliability(self, p: float) -> None:
+        """A new reliability also changes the likelihood of the last reading."""
+        self.sensor_reliability = p
+        self.likelihood = door_likelihood(DOORS, self.saw_door, p)
+
+    def set_boundary(self, boundary: str) -> None:
+        self.boundary = boundary
+
 
 def hallway(seed: int = 0) -> Demo:
     """Demo "histogram hallway" (chapter 1): Predict shifts and blurs the bars,
@@ -106,11 +117,6 @@ def hallway(seed: int = 0) -> Demo:
             f"sensor right {model.sensor_reliability:.2f} of the time; ends: {model.boundary}"
         )
 
-    predict = button("Predict", icon="arrow-right", tooltip="Move one cell right")
-    update = button("Update", icon="eye", tooltip="Read the door sensor")
-    reset = button("Reset", icon="undo", tooltip="Uniform belief, start again")
-    motion = slider(widgets.FloatSlider, "motion reliability", 0.8, 0.34, 1.0, 0.02)
-    sensor = slider(widgets.FloatSlider, "sensor reliability", 0.8, 0.5, 0.98, 0.02)
     boundary = widgets.ToggleButtons(options=["wall", "wrap"], value="wall", description="ends:")
     boundary.style.button_width = "60px"
     caption = (
@@ -119,47 +125,25 @@ def hallway(seed: int = 0) -> Demo:
         "p(z | x); shaded cells are doors; the grey triangle is the true cell. "
         "Sliders set how reliable motion and sensing are; <i>ends</i> chooses walls or a ring."
     )
-    demo = Demo(
-        "hallway",
-        caption,
-        model,
-        renderer,
-        draw,
-        [widgets.HBox([predict, update, reset, boundary]), widgets.HBox([motion, sensor])],
-        {
-            "predict": predict,
-            "update": update,
-            "reset": reset,
-            "motion_reliability": motion,
-            "sensor_reliability": sensor,
-            "boundary": boundary,
+    return Demo(
+        name="hallway",
+        caption=caption,
+        model=model,
+        renderer=renderer,
+        draw=draw,
+        controls={
+            "predict": (button("Predict", icon="arrow-right", tooltip="Move one cell right"), model.predict),
+            "update": (button("Update", icon="eye", tooltip="Read the door sensor"), model.update),
+            "reset": (button("Reset", icon="undo", tooltip="Uniform belief, start again"), model.reset),
+            "motion_reliability": (
+                slider(widgets.FloatSlider, "motion reliability", 0.8, 0.34, 1.0, 0.02),
+                model.set_motion_reliability,
+            ),
+            "sensor_reliability": (
+                slider(widgets.FloatSlider, "sensor reliability", 0.8, 0.5, 0.98, 0.02),
+                model.set_sensor_reliability,
+            ),
+            "boundary": (boundary, model.set_boundary),
         },
+        layout=[["predict", "update", "reset", "boundary"], ["motion_reliability", "sensor_reliability"]],
     )
-
-    def act(method):
-        def handler(_) -> None:
-            method()
-            demo.refresh()
-
-        return handler
-
-    def on_motion(change) -> None:
-        model.motion_reliability = change["new"]
-        demo.refresh()
-
-    def on_sensor(change) -> None:
-        model.sensor_reliability = change["new"]
-        model.likelihood = door_likelihood(DOORS, model.saw_door, model.sensor_reliability)
-        demo.refresh()
-
-    def on_boundary(change) -> None:
-        model.boundary = change["new"]
-        demo.refresh()
-
-    predict.on_click(act(model.predict))
-    update.on_click(act(model.update))
-    reset.on_click(act(model.reset))
-    motion.observe(on_motion, "value")
-    sensor.observe(on_sensor, "value")
-    boundary.observe(on_boundary, "value")
-    return demo

@@ -8,7 +8,7 @@ import numpy as np
 from ..plots import palette
 from ..plots.style import FigureRenderer, new_figure
 from ..sim.line import simulate_line
-from ._base import Demo, button, play, slider
+from ._base import Demo, button, slider
 
 N_STEPS = 150
 STEP_STD = 0.05  # m of disturbance per step
@@ -90,39 +90,25 @@ def raw_vs_filtered(seed: int = 0) -> Demo:
         e_raw, e_filt = model.rms_errors()
         readout.set_text(f"RMS error so far: raw {100 * e_raw:.0f} cm   filtered {100 * e_filt:.0f} cm")
 
-    player, frame = play(N_STEPS)
-    frame.value = model.frame
-    noise = slider(widgets.FloatSlider, "sensor noise σ (m)", SENSOR_STD, 0.05, SENSOR_MAX, 0.05)
-    fresh = button("New noise", icon="refresh", tooltip="Draw a new random run")
     caption = (
         "<b>Raw vs filtered.</b> Grey: the true position (the robot never sees it). "
         "Orange dots: noisy sensor pings; orange line: trusting each ping. "
         "Teal: the Kalman filter's estimate (band = ±1σ). "
-        "Press ▶ to run time, drag <i>sensor noise</i>, or draw <i>New noise</i>."
+        "Press <i>Run</i> to run time, drag <i>sensor noise</i>, or draw <i>New noise</i>."
     )
-    demo = Demo(
-        "raw-vs-filtered",
-        caption,
-        model,
-        renderer,
-        draw,
-        [widgets.HBox([player, frame]), widgets.HBox([noise, fresh])],
-        {"play": player, "frame": frame, "sensor_noise": noise, "new_noise": fresh},
+    return Demo(
+        name="raw-vs-filtered",
+        caption=caption,
+        model=model,
+        renderer=renderer,
+        draw=draw,
+        frames=N_STEPS,
+        controls={
+            "sensor_noise": (
+                slider(widgets.FloatSlider, "sensor noise σ (m)", SENSOR_STD, 0.05, SENSOR_MAX, 0.05),
+                model.set_sensor_std,
+            ),
+            "new_noise": (button("New noise", icon="refresh", tooltip="Draw a new random run"), model.new_noise),
+        },
+        layout=[["play", "frame"], ["sensor_noise", "new_noise"]],
     )
-
-    def on_frame(change) -> None:
-        model.frame = int(change["new"])
-        demo.refresh()
-
-    def on_noise(change) -> None:
-        model.set_sensor_std(change["new"])
-        demo.refresh()
-
-    def on_fresh(_) -> None:
-        model.new_noise()
-        demo.refresh()
-
-    frame.observe(on_frame, "value")
-    noise.observe(on_noise, "value")
-    fresh.on_click(on_fresh)
-    return demo

@@ -36,6 +36,23 @@ class StepThroughModel:
             self.actions.append(action)
         self.replay()
 
+    def predict(self) -> None:
+        self.press("predict")
+
+    def update(self) -> None:
+        self.press("update")
+
+    def reset(self) -> None:
+        self.press("reset")
+
+    def set_R(self, R: float) -> None:
+        self.R = R
+        self.replay()
+
+    def set_Q(self, Q: float) -> None:
+        self.Q = Q
+        self.replay()
+
     def replay(self) -> None:
         """Recompute every step from the prior with the current R and Q."""
         mu, var = MU0, VAR0
@@ -144,41 +161,28 @@ def step_through(seed: int = 0) -> Demo:
         status.set_text(f"{text}\nR = {m.R:.3g}, Q = {m.Q:.3g}")
         table.value = _table(m.rows)
 
-    predict = button("Predict", icon="arrow-right", tooltip="Move +1 m: shift and widen")
-    update = button("Update", icon="eye", tooltip="Read the sensor: blend and narrow")
-    reset = button("Reset", icon="undo", tooltip="Back to the prior N(2.0, 0.40)")
-    R = slider(widgets.FloatLogSlider, "process noise R", 0.2, -3, 1, 0.1, readout_format=".3g", base=10)
-    Q = slider(widgets.FloatLogSlider, "measurement noise Q", 0.1, -3, 1, 0.1, readout_format=".3g", base=10)
     caption = (
         "<b>Step through the 1-D Kalman filter.</b> Dashed teal: the belief before the step; "
         "purple: the prediction; orange: the measurement N(z, Q); teal: the updated belief. "
         "Press <i>Predict</i> and <i>Update</i> in turn; the sliders replay every step with new R and Q."
     )
-    demo = Demo(
-        "step-through",
-        caption,
-        model,
-        renderer,
-        draw,
-        [widgets.HBox([predict, update, reset]), widgets.HBox([R, Q]), table],
-        {"predict": predict, "update": update, "reset": reset, "R": R, "Q": Q},
+    return Demo(
+        name="step-through",
+        caption=caption,
+        model=model,
+        renderer=renderer,
+        draw=draw,
+        controls={
+            "predict": (button("Predict", icon="arrow-right", tooltip="Move +1 m: shift and widen"), model.predict),
+            "update": (button("Update", icon="eye", tooltip="Read the sensor: blend and narrow"), model.update),
+            "reset": (button("Reset", icon="undo", tooltip="Back to the prior N(2.0, 0.40)"), model.reset),
+            "R": (log_slider("process noise R", model.R), model.set_R),
+            "Q": (log_slider("measurement noise Q", model.Q), model.set_Q),
+        },
+        layout=[["predict", "update", "reset"], ["R", "Q"], table],
     )
 
-    def press(action):
-        def handler(_) -> None:
-            model.press(action)
-            demo.refresh()
 
-        return handler
-
-    def on_noise(change) -> None:
-        model.R, model.Q = R.value, Q.value
-        model.replay()
-        demo.refresh()
-
-    predict.on_click(press("predict"))
-    update.on_click(press("update"))
-    reset.on_click(press("reset"))
-    R.observe(on_noise, "value")
-    Q.observe(on_noise, "value")
-    return demo
+def log_slider(description: str, value: float) -> widgets.FloatLogSlider:
+    """A noise slider from 0.001 to 10 on a log scale."""
+    return slider(widgets.FloatLogSlider, description, value, -3, 1, 0.1, readout_format=".3g", base=10)

@@ -25,6 +25,18 @@ class TrustModel:
     def K(self) -> float:
         return self.var_pred / (self.var_pred + self.var_meas)  # K = var_bar / (var_bar + var_Q)
 
+    def set_mu_pred(self, mu_pred: float) -> None:
+        self.mu_pred = mu_pred
+
+    def set_var_pred(self, var_pred: float) -> None:
+        self.var_pred = var_pred
+
+    def set_z(self, z: float) -> None:
+        self.z = z
+
+    def set_var_meas(self, var_meas: float) -> None:
+        self.var_meas = var_meas
+
     def fused(self) -> tuple[float, float]:
         return fuse(self.mu_pred, self.var_pred, self.z, self.var_meas)
 
@@ -70,30 +82,28 @@ def trust_slider(seed: int = 0) -> Demo:
             f"σ² = {var_f:.3g} < min({model.var_pred:.3g}, {model.var_meas:.3g}): narrower than both inputs"
         )
 
-    mu_pred = slider(widgets.FloatSlider, "prediction mean", model.mu_pred, -4.0, 4.0, 0.1)
-    var_pred = slider(widgets.FloatLogSlider, "prediction variance", model.var_pred, -2, 1, 0.05, ".3f", base=10)
-    z = slider(widgets.FloatSlider, "measurement z", model.z, -4.0, 4.0, 0.1)
-    var_meas = slider(widgets.FloatLogSlider, "measurement variance", model.var_meas, -2, 1, 0.05, ".3f", base=10)
     caption = (
         "<b>The gain as a trust slider.</b> Purple: the prediction; orange: the measurement; "
         "teal: the fused belief, always narrower than both. The bar shows K from 0 (trust the "
         "prediction) to 1 (trust the measurement). Drag the variances and the means."
     )
-    demo = Demo(
-        "trust-slider",
-        caption,
-        model,
-        renderer,
-        draw,
-        [widgets.HBox([mu_pred, var_pred]), widgets.HBox([z, var_meas])],
-        {"mu_pred": mu_pred, "var_pred": var_pred, "z": z, "var_meas": var_meas},
+    m = model
+    return Demo(
+        name="trust-slider",
+        caption=caption,
+        model=model,
+        renderer=renderer,
+        draw=draw,
+        controls={
+            "mu_pred": (slider(widgets.FloatSlider, "prediction mean", m.mu_pred, -4.0, 4.0, 0.1), m.set_mu_pred),
+            "var_pred": (log_slider("prediction variance", m.var_pred), m.set_var_pred),
+            "z": (slider(widgets.FloatSlider, "measurement z", m.z, -4.0, 4.0, 0.1), m.set_z),
+            "var_meas": (log_slider("measurement variance", m.var_meas), m.set_var_meas),
+        },
+        layout=[["mu_pred", "var_pred"], ["z", "var_meas"]],
     )
 
-    def on_change(_) -> None:
-        model.mu_pred, model.var_pred = mu_pred.value, var_pred.value
-        model.z, model.var_meas = z.value, var_meas.value
-        demo.refresh()
 
-    for control in (mu_pred, var_pred, z, var_meas):
-        control.observe(on_change, "value")
-    return demo
+def log_slider(description: str, value: float) -> widgets.FloatLogSlider:
+    """A variance slider from 0.01 to 10 on a log scale."""
+    return slider(widgets.FloatLogSlider, description, value, -2, 1, 0.05, ".3f", base=10)

@@ -3,8 +3,9 @@
 Per notebook: open it, wait for the kernel to be idle, Run All, then check that no cell
 wrote to stderr or raised, that every widget really rendered, and, for each ``.kf-demo``
 (see ``kfcourse/demos/_base.py`` for the DOM contract): a picture, a caption, every
-slider (End / Home / ArrowRight), every button and the Play animation change the
-picture.  Slider latency (key press to new ``src``) is recorded, not asserted.
+slider (End / Home / ArrowRight), every button and the Run/Pause animation change the
+picture, and after Pause the picture stops within one frame interval.  Slider latency
+(key press to new ``src``) is recorded, not asserted.
 """
 
 from __future__ import annotations
@@ -15,6 +16,8 @@ import time
 import urllib.parse
 
 import pytest
+
+from kfcourse.demos._base import FRAME_INTERVAL
 
 try:
     from playwright.sync_api import TimeoutError as PlaywrightTimeoutError
@@ -30,6 +33,7 @@ WIDGETS_RENDER_TIMEOUT_MS = 30_000
 CHANGE_TIMEOUT_MS = 10_000  # one control action -> new picture
 LATENCY_SAMPLES = 10  # ArrowRight presses per slider
 PLAY_MS = 1_500
+PAUSE_SLACK_MS = 250  # after Pause: one frame interval, plus the frame already on its way, plus transport
 WIDGET_VIEW = "application/vnd.jupyter.widget-view+json"
 
 # --------------------------------------------------------------------------- page-side helpers
@@ -76,7 +80,9 @@ JS_WATCH_IMG = """(img) => {
     if (!window.__kfKeyWatch) {
         window.__kfKeyWatch = true;
         window.__kfKeyT = null;
+        window.__kfClickT = null;
         document.addEventListener('keydown', e => { window.__kfKeyT = e.timeStamp; }, true);
+        document.addEventListener('click', e => { window.__kfClickT = e.timeStamp; }, true);
     }
     const rec = {changes: []};
     img.__kf = rec;
@@ -309,7 +315,7 @@ class DemoDriver:
                 return False
         return True
 
-    # ---- play
+    # ---- Run/Pause (a toggle button; the kernel advances the frames)
 
     def drive_play(self, play, frame) -> None:
         frame_state = frame.evaluate(JS_SLIDER_STATE) if frame is not None else None
@@ -317,32 +323,38 @@ class DemoDriver:
             ok, _ = self.press(frame.locator(".noUi-handle").first, frame, "Home")
             if not ok:
                 self.problem("frame slider: Home did not change the picture")
-        start_button = play.locator("button").first
-        start_button.scroll_into_view_if_needed()
+        play.scroll_into_view_if_needed()
         v0 = frame.evaluate(JS_SLIDER_STATE)["value"] if frame is not None else None
         n0 = self.changes()
-        start_button.click()
+        play.click()  # Run
         self.page.wait_for_timeout(PLAY_MS)
         v1 = frame.evaluate(JS_SLIDER_STATE)["value"] if frame is not None else None
         n1 = self.changes()
-        start_button.click()  # the play button became pause
+        play.click()  # the same button now reads Pause
+        t_pause = self.page.evaluate("() => window.__kfClickT")
         t0 = time.monotonic()
         backlog = self.settle(quiet_ms=250, max_ms=20_000)
+        late = self.img.evaluate("(i, t) => i.__kf.changes.filter(c => c.t > t).map(c => c.t - t)", t_pause)
+        limit = 1000 * FRAME_INTERVAL + PAUSE_SLACK_MS
+        if any(ms > limit for ms in late):
+            self.problem(f"Pause: the picture still changed {max(late):.0f} ms after Pause (limit {limit:.0f} ms)")
+        if play.evaluate("e => e.classList.contains('mod-active')"):
+            self.problem("Pause: the Run/Pause button is still pressed")
         if frame is not None:
             v2 = frame.evaluate(JS_SLIDER_STATE)["value"]
             self.page.wait_for_timeout(400)
             v3 = frame.evaluate(JS_SLIDER_STATE)["value"]
             if v3 != v2:
-                self.problem(f"Play did not pause (frame {v2} -> {v3})")
+                self.problem(f"Run did not pause (frame {v2} -> {v3})")
             if not v1 > v0:
-                self.problem(f"Play: the frame did not advance in {PLAY_MS} ms ({v0} -> {v1})")
+                self.problem(f"Run: the frame did not advance in {PLAY_MS} ms ({v0} -> {v1})")
         if n1 <= n0:
-            self.problem(f"Play: the picture did not change in {PLAY_MS} ms")
+            self.problem(f"Run: the picture did not change in {PLAY_MS} ms")
         frames = f", {v1 - v0:.0f} frames" if frame is not None else ""
         self.report.summary.append(
             f"play {self.label}: {n1 - n0} pictures in {PLAY_MS} ms{frames}; "
-            f"after pause settled in {1000 * (time.monotonic() - t0):.0f} ms"
-            + (" (did not settle)" if backlog < 0 else "")
+            f"after Pause {len(late)} more picture(s), the last {max(late, default=0):.0f} ms after the click; "
+            f"settled in {1000 * (time.monotonic() - t0):.0f} ms" + (" (did not settle)" if backlog < 0 else "")
         )
 
 
@@ -390,7 +402,7 @@ def _check_demo(page, demo, label: str, shot, problems: list[str], report) -> No
     button_locator = demo.locator(".widget-button")
     for i in range(button_locator.count()):
         button = button_locator.nth(i)
-        if button.evaluate("e => !!e.closest('.widget-play')"):
+        if button.evaluate("e => e.classList.contains('kf-control-play')"):
             continue
         key = DemoDriver.key_of(button)
         if key is None:
@@ -402,7 +414,7 @@ def _check_demo(page, demo, label: str, shot, problems: list[str], report) -> No
 
     choices = demo.locator(
         ".widget-toggle-buttons, .widget-radio-box, .widget-dropdown, .widget-checkbox,"
-        " .widget-toggle-button:not(.widget-toggle-buttons .widget-toggle-button)"
+        " .widget-toggle-button:not(.widget-toggle-buttons .widget-toggle-button):not(.kf-control-play)"
     )
     for i in range(choices.count()):
         choice = choices.nth(i)
@@ -413,7 +425,7 @@ def _check_demo(page, demo, label: str, shot, problems: list[str], report) -> No
         if driver.drive_choice(choice, key) is not None:
             tested.add(key)
 
-    plays = demo.locator(".widget-play")
+    plays = demo.locator(".kf-control-play")
     for i in range(plays.count()):
         play = plays.nth(i)
         tested.add(DemoDriver.key_of(play) or f"play#{i}")

@@ -3,6 +3,9 @@ the animation stepped; the model changes as it should and nothing drawn is NaN."
 
 from __future__ import annotations
 
+import asyncio
+import pickle
+
 import ipywidgets as widgets
 import numpy as np
 import pytest
@@ -12,6 +15,7 @@ from matplotlib.patches import Patch
 from matplotlib.text import Text
 
 import kfcourse as kf
+from kfcourse.demos.hallway import DOORS
 
 DEMOS = ["raw_vs_filtered", "hallway", "covariance_ellipse", "step_through", "trust_slider"]
 
@@ -39,12 +43,17 @@ def plotted_arrays(fig):
                 assert "inf" not in artist.get_text().replace("info", ""), artist.get_text()
 
 
-def assert_finite(demo):
+def assert_finite(demo, what: str = "the first picture"):
     arrays = list(plotted_arrays(demo.renderer.fig))
-    assert arrays
+    assert arrays, what
     for a in arrays:
-        assert np.isfinite(a).all()
-    assert bytes(demo.image.value[:4]) == b"\x89PNG"
+        assert np.isfinite(a).all(), f"not finite after {what}"
+    assert bytes(demo.image.value[:4]) == b"\x89PNG", what
+
+
+def model_state(demo) -> bytes:
+    """Everything the model holds, as bytes, to tell whether an action changed it."""
+    return pickle.dumps(vars(demo.model))
 
 
 def sliders(demo):
@@ -81,25 +90,41 @@ def test_every_slider_at_min_max_and_middle(name):
                 continue
             control.value = value
             assert bytes(demo.image.value) != bytes(before), f"{key}={value} did not change the picture"
-            assert_finite(demo)
+            assert_finite(demo, f"{key} = {value}")
 
 
-@pytest.mark.parametrize("name", DEMOS)
-def test_every_button(name):
-    demo = make(name)
-    for key, control in buttons(demo).items():
-        control.click()
-        assert_finite(demo), key
+@pytest.mark.parametrize("name", [n for n in DEMOS if buttons(make(n))])
+def test_every_button_changes_the_picture_or_the_model(name):
+    for key in buttons(make(name)):
+        demo = make(name)
+        for other_key, other in buttons(demo).items():  # leave the first state (Reset at the start does nothing)
+            if other_key != key:
+                other.click()
+        picture, state = bytes(demo.image.value), model_state(demo)
+        demo.controls[key].click()
+        changed = bytes(demo.image.value) != picture or model_state(demo) != state
+        assert changed, f"{key} changed neither the picture nor the model"
+        assert_finite(demo, f"{key} pressed")
 
 
 def test_raw_vs_filtered_animation_and_noise():
     demo = make("raw_vs_filtered")
     frame = demo.controls["frame"]
-    assert isinstance(demo.controls["play"], widgets.Play)
-    assert demo.controls["play"].max == frame.max
+    assert isinstance(demo.controls["play"], widgets.ToggleButton)
+    assert frame.max == demo.model.run.t.size - 1
+    frame.value = 10
+    assert demo.model.frame == 10
+    before = bytes(demo.image.value)
+    assert demo.step()
+    assert demo.model.frame == frame.value == 11
+    assert bytes(demo.image.value) != before  # one more ping drawn
+    demo.controls["play"].value = True  # no event loop here: Run switches itself off, nothing moves
+    assert demo.controls["play"].value is False and demo.model.frame == 11
     frame.value = 10
     assert demo.model.frame == 10
     frame.value = frame.max
+    assert demo.model.frame == frame.max
+    assert not demo.step()  # the last frame: nothing to advance
     assert demo.model.frame == frame.max
     demo.controls["sensor_noise"].value = demo.controls["sensor_noise"].max
     raw, filt = demo.model.rms_errors()
@@ -130,12 +155,20 @@ def test_hallway_predict_update_reset():
         demo.controls["update"].click()
         assert m.belief.sum() == pytest.approx(1.0)
         assert np.isfinite(m.belief).all()
+    # Perfect motion on a ring: Predict shifts the belief and the robot exactly one cell right,
+    # and Update is Bayes' rule with the likelihood of what the sensor read.
     demo.controls["sensor_reliability"].value = demo.controls["sensor_reliability"].max
     demo.controls["motion_reliability"].value = 1.0
     for _ in range(6):
+        prior, cell = m.belief.copy(), m.true_cell
         demo.controls["predict"].click()
+        assert m.belief == pytest.approx(np.roll(prior, 1))
+        assert m.true_cell == (cell + 1) % prior.size
+        prior = m.belief.copy()
         demo.controls["update"].click()
-    assert m.belief.argmax() == m.true_cell or m.belief.max() < 0.9
+        likelihood = kf.sim.door_likelihood(DOORS, m.saw_door, m.sensor_reliability)
+        assert m.likelihood == pytest.approx(likelihood)
+        assert m.belief == pytest.approx(prior * likelihood / np.sum(prior * likelihood))
     demo.controls["reset"].click()
     demo.controls["motion_reliability"].value = 0.8
     demo.controls["sensor_reliability"].value = 0.8
@@ -194,3 +227,48 @@ def test_trust_gauge_and_narrowing():
     demo.controls["var_meas"].value = 0.01
     assert m.K > 0.99
     assert m.fused()[0] == pytest.approx(m.z, abs=0.01)
+
+
+def test_run_plays_to_the_end_on_an_event_loop(monkeypatch):
+    monkeypatch.setattr(kf.demos._base, "FRAME_INTERVAL", 0.001)
+    monkeypatch.setattr(kf.demos._base, "FRAME_GAP", 0.0)
+    demo = make("raw_vs_filtered")
+    play, frame = demo.controls["play"], demo.controls["frame"]
+    frame.value = frame.max - 20
+    shown = []
+    demo.image.observe(lambda _: shown.append(demo.model.frame), "value")
+
+    async def run_and_wait():
+        play.value = True
+        assert play.description == "Pause"
+        while play.value:
+            await asyncio.sleep(0.01)
+
+    asyncio.run(run_and_wait())
+    assert demo.model.frame == frame.max and play.description == "Run"
+    assert shown == sorted(shown) and shown[-1] == frame.max  # forward only, possibly skipping frames
+    asyncio.run(run_and_wait())  # Run at the last frame starts again from the first
+    assert shown.count(0) == 1 and demo.model.frame == frame.max
+
+
+def test_pause_stops_before_the_next_frame(monkeypatch):
+    monkeypatch.setattr(kf.demos._base, "FRAME_INTERVAL", 0.001)
+    demo = make("raw_vs_filtered")
+    play, frame = demo.controls["play"], demo.controls["frame"]
+    frame.value = 0
+    paused_at = []
+
+    def pause(_) -> None:
+        if demo.model.frame >= 5 and play.value:
+            play.value = False
+            paused_at.append(demo.model.frame)
+
+    demo.image.observe(pause, "value")
+
+    async def run_then_wait():
+        play.value = True
+        await asyncio.sleep(0.3)  # time for many more frames, were it still running
+
+    asyncio.run(run_then_wait())
+    assert len(paused_at) == 1 and demo.model.frame == paused_at[0] < frame.max
+    assert play.description == "Run"
