@@ -104,7 +104,7 @@ def covariance(x, name: str, n: int | None = None) -> np.ndarray:
         raise ValueError(f"{name} must not be empty")
     if a.shape[0] != a.shape[1]:
         raise ValueError(f"{name} must be a square covariance matrix, got shape {a.shape}")
-    if not (a == a.T).all():  # exactly symmetric is the common case; else allow rounding
+    if a.tolist() != a.T.tolist():  # not exactly symmetric (a list compare is the cheapest test): allow rounding
         if np.abs(a - a.T).max() > _SYM_RTOL * np.abs(a).max():
             raise ValueError(f"{name} must be a symmetric covariance matrix, got {a.tolist()}")
     try:
