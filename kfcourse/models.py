@@ -74,7 +74,7 @@ def numeric_jacobian(f: Callable, x, eps: float = 1e-6, residual: Callable | Non
     """
     f = v.function(f, "f")
     x = v.vector(x, "x")
-    eps = v.variance(eps, "eps", positive=True)
+    eps = v.positive(eps, "eps", "a finite-difference step")
     diff = v.optional_function(residual, "residual") or np.subtract
     cols = []
     for i in range(x.size):
@@ -108,7 +108,7 @@ def constant_velocity(dt: float, dim: int = 1) -> tuple[np.ndarray, np.ndarray]:
     -------
     (F, H) : shapes (2 dim, 2 dim), (dim, 2 dim)
     """
-    dt = v.variance(dt, "dt", positive=True)
+    dt = v.positive(dt, "dt", "a time step", "s")
     if isinstance(dim, bool) or not isinstance(dim, (int, np.integer)) or dim < 1:
         raise ValueError(f"dim must be a whole number >= 1, got {dim!r}")
     eye = np.eye(dim)
@@ -126,7 +126,7 @@ def _rows(x, name: str, n: int) -> np.ndarray:
 
 
 def _pose_control(state, u, dt):
-    return _rows(state, "state", 3), v.vector(u, "u", 2), v.variance(dt, "dt", positive=True)
+    return _rows(state, "state", 3), v.vector(u, "u", 2), v.positive(dt, "dt", "a time step", "s")
 
 
 def unicycle(state, u, dt) -> np.ndarray:

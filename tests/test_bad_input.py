@@ -108,6 +108,23 @@ CASES: list[tuple[str, Callable[[], object], str]] = [
             ("c not a number", {"c": "one"}, "c"),
         ]
     ],
+    ("kf_1d_predict/var negative", lambda: kf.kf_1d_predict(2.0, -0.4, 1.0), "var"),
+    ("kf_1d_predict/mu NaN", lambda: kf.kf_1d_predict(NAN, 0.4, 1.0), "mu"),
+    ("kf_1d_predict/u vector", lambda: kf.kf_1d_predict(2.0, 0.4, [1.0, 2.0]), "u"),
+    ("kf_1d_predict/a inf", lambda: kf.kf_1d_predict(2.0, 0.4, 1.0, a=INF), "a"),
+    ("kf_1d_predict/b not a number", lambda: kf.kf_1d_predict(2.0, 0.4, 1.0, b="one"), "b"),
+    ("kf_1d_predict/R negative", lambda: kf.kf_1d_predict(2.0, 0.4, 1.0, R=-0.2), "R"),
+    ("kf_1d_gain/var_bar negative", lambda: kf.kf_1d_gain(-0.6), "var_bar"),
+    ("kf_1d_gain/var_bar NaN", lambda: kf.kf_1d_gain(NAN), "var_bar"),
+    ("kf_1d_gain/c inf", lambda: kf.kf_1d_gain(0.6, c=INF), "c"),
+    ("kf_1d_gain/Q negative", lambda: kf.kf_1d_gain(0.6, Q=-0.1), "Q"),
+    ("kf_1d_gain/Q zero with exact prediction", lambda: kf.kf_1d_gain(0.0, Q=0.0), "Q"),
+    ("kf_1d_update/mu_bar inf", lambda: kf.kf_1d_update(INF, 0.6, 3.6), "mu_bar"),
+    ("kf_1d_update/var_bar negative", lambda: kf.kf_1d_update(3.0, -0.6, 3.6), "var_bar"),
+    ("kf_1d_update/z NaN", lambda: kf.kf_1d_update(3.0, 0.6, NAN), "z"),
+    ("kf_1d_update/z None", lambda: kf.kf_1d_update(3.0, 0.6, None), "z"),
+    ("kf_1d_update/c vector", lambda: kf.kf_1d_update(3.0, 0.6, 3.6, c=[1.0, 1.0]), "c"),
+    ("kf_1d_update/Q NaN", lambda: kf.kf_1d_update(3.0, 0.6, 3.6, Q=NAN), "Q"),
     ("steady_state_1d/R negative", lambda: kf.steady_state_1d(-0.04, 0.25), "R"),
     ("steady_state_1d/Q NaN", lambda: kf.steady_state_1d(0.04, NAN), "Q"),
     ("steady_state_1d/R and Q zero", lambda: kf.steady_state_1d(0.0, 0.0), "R"),
@@ -379,3 +396,40 @@ def test_bad_kernel_is_named(kernel):
 def test_empty_covariance():
     with pytest.raises(ValueError, match=r"^Sig must not be empty"):
         kf.kf_predict(np.zeros(0), np.zeros((0, 0)), None, np.zeros((0, 0)), None, np.zeros((0, 0)))
+
+
+@pytest.mark.parametrize(
+    ("call", "message"),
+    [
+        (lambda: models.constant_velocity(0.0, 2), "dt must be a time step > 0 s"),
+        (lambda: kf.unicycle(POSE, [0.5, 0.0], -0.1), "dt must be a time step > 0 s"),
+        (lambda: kf.numeric_jacobian(lin, [1.0], eps=0.0), "eps must be a finite-difference step > 0"),
+        (lambda: kf.gaussian_pdf(0.0, 0.0, 0.0), "var must be a variance > 0"),
+        (lambda: kf.ellipse_axes(I2, nsig=0.0), "nsig must be a number of standard deviations > 0"),
+        (lambda: kf.associate(**ASSOC_OK, gate=-3.0), "gate must be a distance > 0 standard deviations"),
+        (lambda: kf.kf_1d_predict(2.0, 0.4, 1.0, R=-0.2), "R must be a variance >= 0"),
+        (lambda: kf.kf_1d_gain(-0.6), "var_bar must be a variance >= 0"),
+        (lambda: kf.sim.drift_sigma(-0.1, 4), "step_std must be a standard deviation >= 0 m"),
+        (lambda: kf.sim.simulate_line(sensor_std=0.0), "sensor_std must be a standard deviation > 0 m"),
+        (lambda: kf.sim.motion_kernel(1.2), "reliability must be a probability in [0, 1]"),
+        (lambda: kf.sim.door_likelihood([True, False], True, -0.1), "reliability must be a probability in [0, 1]"),
+        (
+            lambda: kf.sim.read_door(0, [True], 1.5, np.random.default_rng(0)),
+            "reliability must be a probability in [0, 1]",
+        ),
+    ],
+)
+def test_message_says_what_the_argument_is(call, message):
+    """A step, a distance or a standard deviation is not called a variance."""
+    with pytest.raises(ValueError, match=re.escape(message)):
+        call()
+
+
+def test_one_dimensional_steps_agree_with_the_cycle():
+    """kf_1d_cycle is kf_1d_predict, kf_1d_gain and kf_1d_update in a row (valid inputs)."""
+    cyc = kf.kf_1d_cycle(2.0, 0.4, 1.0, 3.6, a=0.9, b=1.1, c=1.2, R=0.3, Q=0.2)
+    mu_bar, var_bar = kf.kf_1d_predict(2.0, 0.4, 1.0, a=0.9, b=1.1, R=0.3)
+    assert (mu_bar, var_bar) == (cyc.mu_bar, cyc.var_bar)
+    assert kf.kf_1d_gain(var_bar, c=1.2, Q=0.2) == cyc.K
+    assert kf.kf_1d_update(mu_bar, var_bar, 3.6, c=1.2, Q=0.2) == (cyc.mu, cyc.var)
+    assert cyc.mu != cyc.mu_bar and cyc.var < cyc.var_bar  # the update did something

@@ -10,7 +10,7 @@ from collections.abc import Callable
 import numpy as np
 
 from .. import _validate as v
-from .kalman import _gain
+from .linalg import innovation_covariance
 
 
 def mahalanobis(nu, S) -> float:
@@ -83,12 +83,9 @@ def associate(
     (index or None, distances) : the matched row of ``landmarks`` (``None`` when
         gated out) and every landmark's distance, shape (L,).
     """
-    z = v.vector(z, "z")
-    mu_bar = v.vector(mu_bar, "mu_bar")
-    Sig_bar = v.covariance(Sig_bar, "Sig_bar", mu_bar.size)
+    mu_bar, Sig_bar, z, Q = v.update_inputs(mu_bar, Sig_bar, z, Q)
     lms = v.matrix(landmarks, "landmarks")
-    Q = v.covariance(Q, "Q", z.size)
-    gate = v.variance(gate, "gate", positive=True)
+    gate = v.positive(gate, "gate", "a distance", "standard deviations")
     h, H = v.function(h, "h"), v.function(H, "H")
     residual = v.optional_function(residual, "residual")
     dist = np.empty(lms.shape[0])
@@ -96,7 +93,7 @@ def associate(
         z_hat = v.output(h(mu_bar, m), "h", z.size)
         Hj = v.output_matrix(H(mu_bar, m), "H", z.size, mu_bar.size)
         nu = z - z_hat if residual is None else v.output(residual(z, z_hat), "residual", z.size)
-        S, _ = _gain(Sig_bar, Hj, Q)
+        S = innovation_covariance(Sig_bar, Hj, Q)  # S_j = H_j Sig_bar H_j^T + Q
         dist[j] = mahalanobis(nu, S)  # d_j = sqrt(nu^T S^-1 nu)
     best = int(np.argmin(dist))
     return (best if dist[best] <= gate else None), dist

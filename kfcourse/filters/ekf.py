@@ -11,7 +11,7 @@ from collections.abc import Callable
 import numpy as np
 
 from .. import _validate as v
-from .kalman import _correct, _gain, _symmetric
+from .linalg import gain, innovation_covariance, joseph_correct, symmetric
 
 
 def ekf_predict(mu, Sig, u, g: Callable, G: Callable, R) -> tuple[np.ndarray, np.ndarray]:
@@ -47,7 +47,7 @@ def ekf_predict(mu, Sig, u, g: Callable, G: Callable, R) -> tuple[np.ndarray, np
     mu_bar = v.output(g(mu, u), "g", n)  # mu_bar = g(mu, u): the mean rides the real curve
     Gt = v.output_matrix(G(mu, u), "G", n, n)  # G at the previous mean
     Sig_bar = Gt @ Sig @ Gt.T + R  # Sig_bar = G Sig G^T + R: the covariance rides the tangent
-    return mu_bar, _symmetric(Sig_bar)
+    return mu_bar, symmetric(Sig_bar)
 
 
 def ekf_update(
@@ -81,16 +81,13 @@ def ekf_update(
     -------
     (mu, Sig) : shapes (n,), (n, n)
     """
-    mu_bar = v.vector(mu_bar, "mu_bar")
-    n = mu_bar.size
-    Sig_bar = v.covariance(Sig_bar, "Sig_bar", n)
-    z = v.vector(z, "z")
-    k = z.size
-    Q = v.covariance(Q, "Q", k)
+    mu_bar, Sig_bar, z, Q = v.update_inputs(mu_bar, Sig_bar, z, Q)
+    n, k = mu_bar.size, z.size
     h, H = v.function(h, "h"), v.function(H, "H")
     residual = v.optional_function(residual, "residual")
     z_hat = v.output(h(mu_bar), "h", k)  # predicted measurement h(mu_bar)
     Ht = v.output_matrix(H(mu_bar), "H", k, n)  # H at the predicted mean
     y = z - z_hat if residual is None else v.output(residual(z, z_hat), "residual", k)  # innovation
-    _, K = _gain(Sig_bar, Ht, Q)
-    return _correct(mu_bar, Sig_bar, y, Ht, Q, K)
+    S = innovation_covariance(Sig_bar, Ht, Q)  # S = H Sig_bar H^T + Q
+    K = gain(Sig_bar @ Ht.T, S)  # K = Sig_bar H^T S^-1
+    return joseph_correct(mu_bar, Sig_bar, y, Ht, Q, K)

@@ -37,7 +37,7 @@ def gaussian_pdf(x, mu: float, var: float) -> np.ndarray:
     """
     x = v.finite(x, "x")
     mu = v.scalar(mu, "mu")
-    var = v.variance(var, "var", positive=True)
+    var = v.positive(var, "var", "a variance")
     y = np.exp(-0.5 * (x - mu) ** 2 / var) / math.sqrt(2.0 * math.pi * var)
     return float(y) if y.ndim == 0 else y
 
@@ -187,7 +187,7 @@ def ellipse_axes(Sig, nsig: float = 1.0):
         in degrees, in [-90, 90), as matplotlib's ``Ellipse`` takes them.
     """
     Sig = v.covariance(Sig, "Sig", 2)
-    k = v.variance(nsig, "nsig", positive=True)
+    k = v.positive(nsig, "nsig", "a number of standard deviations")
     w, V = np.linalg.eigh(Sig)
     w = np.clip(w, 0.0, None)
     angle = math.degrees(math.atan2(V[1, 1], V[0, 1]))  # direction of the major axis

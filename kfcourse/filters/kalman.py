@@ -13,12 +13,16 @@ import numpy as np
 
 from .. import _validate as v
 from .gaussian import fuse
+from .linalg import gain, innovation_covariance, joseph_correct, symmetric
 
 __all__ = [
     "KF1DCycle",
     "fuse",
     "kf_1d_cycle",
+    "kf_1d_gain",
+    "kf_1d_predict",
     "kf_1d_step",
+    "kf_1d_update",
     "kf_gain",
     "kf_predict",
     "kf_step",
@@ -38,6 +42,103 @@ class KF1DCycle(NamedTuple):
     var: float  #: updated variance
 
 
+def kf_1d_predict(mu, var, u, a=1.0, b=1.0, R=0.2) -> tuple[float, float]:
+    r"""Scalar Kalman predict step: move the belief and grow its variance.
+
+    .. math:: \bar\mu = a\mu + bu, \qquad \bar\sigma^2 = a^2\sigma^2 + \sigma_R^2
+
+    Introduced in chapter 3.
+
+    Parameters
+    ----------
+    mu, var : float
+        Prior mean and variance (``var >= 0``).
+    u : float
+        Control (commanded move).
+    a, b : float
+        Motion and control coefficients.
+    R : float
+        Process (motion) noise variance, ``>= 0``.
+
+    Returns
+    -------
+    (mu_bar, var_bar) : floats
+        Predicted mean and variance.
+    """
+    mu = v.scalar(mu, "mu")
+    var = v.variance(var, "var")
+    u = v.scalar(u, "u")
+    a, b = v.scalar(a, "a"), v.scalar(b, "b")
+    R = v.variance(R, "R")
+    mu_bar = a * mu + b * u  # predict mean: mu_bar = a mu + b u
+    var_bar = a * a * var + R  # predict variance: var_bar = a^2 var + R
+    return mu_bar, var_bar
+
+
+def kf_1d_gain(var_bar, c=1.0, Q=0.1) -> float:
+    r"""Scalar Kalman gain: how far the update moves toward the measurement.
+
+    .. math:: K = \frac{c\,\bar\sigma^2}{c^2\bar\sigma^2 + \sigma_Q^2}
+
+    With ``c = 1``, ``K`` is near 1 when the prediction is much less certain than
+    the sensor and near 0 when it is much more certain.  Introduced in chapter 3.
+
+    Parameters
+    ----------
+    var_bar : float
+        Predicted variance, ``>= 0``.
+    c : float
+        Measurement coefficient.
+    Q : float
+        Measurement noise variance, ``>= 0`` (``> 0`` when ``c^2 var_bar`` is 0).
+
+    Returns
+    -------
+    K : float
+    """
+    var_bar = v.variance(var_bar, "var_bar")
+    c = v.scalar(c, "c")
+    Q = v.variance(Q, "Q")
+    denom = c * c * var_bar + Q  # c^2 var_bar + Q
+    if denom <= 0:
+        raise ValueError("Q must be > 0 when the predicted variance c^2 var_bar is 0")
+    return c * var_bar / denom  # gain: K = c var_bar / (c^2 var_bar + Q)
+
+
+def kf_1d_update(mu_bar, var_bar, z, c=1.0, Q=0.1) -> tuple[float, float]:
+    r"""Scalar Kalman update step: blend the prediction with a measurement.
+
+    .. math:: \mu = \bar\mu + K(z - c\bar\mu), \qquad \sigma^2 = (1 - Kc)\,\bar\sigma^2
+
+    with ``K`` from :func:`kf_1d_gain`.  Introduced in chapter 3.
+
+    Parameters
+    ----------
+    mu_bar, var_bar : float
+        Predicted mean and variance (``var_bar >= 0``).
+    z : float
+        Measurement.
+    c : float
+        Measurement coefficient.
+    Q : float
+        Measurement noise variance, ``>= 0``.
+
+    Returns
+    -------
+    (mu, var) : floats
+        Updated mean and variance.
+    """
+    mu_bar = v.scalar(mu_bar, "mu_bar")
+    var_bar = v.variance(var_bar, "var_bar")
+    z = v.scalar(z, "z")
+    c = v.scalar(c, "c")
+    K = kf_1d_gain(var_bar, c, Q)  # gain: K = c var_bar / (c^2 var_bar + Q)
+    innovation = z - c * mu_bar  # innovation: the surprise z - c mu_bar
+    mu = mu_bar + K * innovation  # update mean
+    var = (1.0 - K * c) * var_bar  # update variance
+    return mu, max(var, 0.0)
+
+
 def kf_1d_cycle(mu, var, u, z, a=1.0, b=1.0, c=1.0, R=0.2, Q=0.1) -> KF1DCycle:
     r"""One scalar Kalman cycle, returning every intermediate quantity.
 
@@ -46,6 +147,7 @@ def kf_1d_cycle(mu, var, u, z, a=1.0, b=1.0, c=1.0, R=0.2, Q=0.1) -> KF1DCycle:
         K = \frac{c\,\bar\sigma^2}{c^2\bar\sigma^2 + \sigma_Q^2},\quad
         \mu' = \bar\mu + K(z - c\bar\mu),\quad \sigma'^2 = (1 - Kc)\,\bar\sigma^2
 
+    Built from :func:`kf_1d_predict`, :func:`kf_1d_gain` and :func:`kf_1d_update`.
     Introduced in chapter 3.
 
     Parameters
@@ -67,39 +169,32 @@ def kf_1d_cycle(mu, var, u, z, a=1.0, b=1.0, c=1.0, R=0.2, Q=0.1) -> KF1DCycle:
     -------
     KF1DCycle
     """
-    mu = v.scalar(mu, "mu")
-    var = v.variance(var, "var")
-    u = v.scalar(u, "u")
-    a, b, c = v.scalar(a, "a"), v.scalar(b, "b"), v.scalar(c, "c")
-    R = v.variance(R, "R")
-    Q = v.variance(Q, "Q")
-    mu_bar = a * mu + b * u  # predict mean: mu_bar = a mu + b u
-    var_bar = a * a * var + R  # predict variance: var_bar = a^2 var + R
+    mu_bar, var_bar = kf_1d_predict(mu, var, u, a, b, R)
+    c, Q = v.scalar(c, "c"), v.variance(Q, "Q")  # checked even on a predict-only tick
     if z is None:
         return KF1DCycle(mu_bar, var_bar, 0.0, 0.0, mu_bar, var_bar)
     z = v.scalar(z, "z")
-    denom = c * c * var_bar + Q
-    if denom <= 0:
-        raise ValueError("Q must be > 0 when the predicted variance c^2 var_bar is 0")
-    K = c * var_bar / denom  # gain: K = c var_bar / (c^2 var_bar + Q)
-    innovation = z - c * mu_bar  # innovation: the surprise z - c mu_bar
-    mu_new = mu_bar + K * innovation  # update mean
-    var_new = (1.0 - K * c) * var_bar  # update variance
-    return KF1DCycle(mu_bar, var_bar, innovation, K, mu_new, max(var_new, 0.0))
+    K = kf_1d_gain(var_bar, c, Q)
+    mu_new, var_new = kf_1d_update(mu_bar, var_bar, z, c, Q)
+    return KF1DCycle(mu_bar, var_bar, z - c * mu_bar, K, mu_new, var_new)
 
 
 def kf_1d_step(mu, var, u, z, a=1.0, b=1.0, c=1.0, R=0.2, Q=0.1) -> tuple[float, float]:
     """One scalar Kalman predict/update cycle, as in the lesson.
 
-    Introduced in chapter 3.  See :func:`kf_1d_cycle` for the equations and the
-    parameters; this returns only the posterior.
+    :func:`kf_1d_predict` then :func:`kf_1d_update`.  Introduced in chapter 3.
+    See :func:`kf_1d_cycle` for the equations and the parameters; this returns
+    only the posterior.
 
     Returns
     -------
     (mu, var) : floats
     """
-    cyc = kf_1d_cycle(mu, var, u, z, a, b, c, R, Q)
-    return cyc.mu, cyc.var
+    mu_bar, var_bar = kf_1d_predict(mu, var, u, a, b, R)
+    c, Q = v.scalar(c, "c"), v.variance(Q, "Q")  # checked even on a predict-only tick
+    if z is None:
+        return mu_bar, var_bar
+    return kf_1d_update(mu_bar, var_bar, z, c, Q)
 
 
 def steady_state_1d(R, Q, a=1.0, c=1.0) -> tuple[float, float, float]:
@@ -145,34 +240,26 @@ def steady_state_1d(R, Q, a=1.0, c=1.0) -> tuple[float, float, float]:
 
 
 # ---------------------------------------------------------------- matrix form
-def _check_step_inputs(mu, Sig, u, F, B, R):
+def _check_predict_inputs(mu, Sig, u, F, B, R):
     mu = v.vector(mu, "mu")
     n = mu.size
     Sig = v.covariance(Sig, "Sig", n)
-    F = v.constant_matrix(F, "F", n, n)
-    R = v.covariance(R, "R", n, constant=True)
+    F = v.matrix(F, "F", n, n)
+    R = v.covariance(R, "R", n)
     if B is None and u is None:
         return mu, Sig, None, F, None, R
     if B is None or u is None:
         raise ValueError("u and B must be given together (or both None for no control)")
     u = v.vector(u, "u")
-    B = v.constant_matrix(B, "B", n, u.size)
+    B = v.matrix(B, "B", n, u.size)
     return mu, Sig, u, F, B, R
 
 
-def _check_update_inputs(mu_bar, Sig_bar, z, H, Q):
-    mu_bar = v.vector(mu_bar, "mu_bar")
-    n = mu_bar.size
-    Sig_bar = v.covariance(Sig_bar, "Sig_bar", n)
-    z = v.vector(z, "z")
-    H = v.constant_matrix(H, "H", z.size, n)
-    Q = v.covariance(Q, "Q", z.size, constant=True)
-    return mu_bar, Sig_bar, z, H, Q
-
-
-# The private helpers take checked float arrays; ``.dot`` costs less than ``@`` on small ones.
+# The helpers below take checked arrays and write A.dot(B) for the product A @ B
+# (on small matrices it costs half as much).
 def _predict(mu, Sig, u, F, B, R):
-    """The predict equations; Sig_bar is symmetric only up to rounding (see kf_predict)."""
+    """The predict equations; Sig_bar is symmetric only up to rounding (kf_predict
+    symmetrises it, kf_step passes it straight to the update)."""
     mu_bar = F.dot(mu)  # mu_bar = F mu + B u
     if B is not None:
         mu_bar = mu_bar + B.dot(u)
@@ -180,62 +267,12 @@ def _predict(mu, Sig, u, F, B, R):
     return mu_bar, Sig_bar
 
 
-def _symmetric(A):
-    """(A + A^T) / 2, so rounding cannot make a covariance lopsided; remembered as
-    :func:`produced` (callers pass only covariances that are PSD by construction)."""
-    return v.produced(0.5 * (A + A.T))
-
-
-def _inverse(S):
-    """S^-1 for the innovation covariance; closed form for the common 1x1 and 2x2."""
-    k = S.shape[0]
-    if k == 1:
-        s = S[0, 0]
-        if s == 0.0:
-            raise np.linalg.LinAlgError
-        return np.array([[1.0 / s]])
-    if k == 2:
-        (a, b), (c, d) = S.tolist()
-        det = a * d - b * c
-        if det == 0.0:
-            raise np.linalg.LinAlgError
-        return np.array([[d / det, -b / det], [-c / det, a / det]])
-    return np.linalg.inv(S)
-
-
-def _gain(Sig_bar, H, Q):
-    PHt = Sig_bar.dot(H.T)
-    S = H.dot(PHt) + Q  # innovation covariance S = H Sig_bar H^T + Q
-    try:
-        K = PHt.dot(_inverse(S))  # K = Sig_bar H^T S^-1
-    except np.linalg.LinAlgError:
-        raise ValueError("Q: the innovation covariance S = H Sig_bar H^T + Q is singular") from None
-    return S, K
-
-
-_IDENTITY: dict[int, np.ndarray] = {}  # read-only identity matrices by size
-
-
-def _identity(n):
-    eye = _IDENTITY.get(n)
-    if eye is None:
-        eye = np.eye(n)
-        eye.setflags(write=False)
-        _IDENTITY[n] = eye
-    return eye
-
-
-def _correct(mu_bar, Sig_bar, y, H, Q, K):
-    mu = mu_bar + K.dot(y)  # mu = mu_bar + K y
-    I_KH = _identity(mu_bar.size) - K.dot(H)
-    Sig = I_KH.dot(Sig_bar).dot(I_KH.T) + K.dot(Q).dot(K.T)  # Joseph form of (I - K H) Sig_bar
-    return mu, _symmetric(Sig)
-
-
 def _update(mu_bar, Sig_bar, z, H, Q):
-    _, K = _gain(Sig_bar, H, Q)
+    """The update equations."""
+    S = innovation_covariance(Sig_bar, H, Q)  # S = H Sig_bar H^T + Q
+    K = gain(Sig_bar.dot(H.T), S)  # K = Sig_bar H^T S^-1
     y = z - H.dot(mu_bar)  # innovation y = z - H mu_bar
-    return _correct(mu_bar, Sig_bar, y, H, Q, K)
+    return joseph_correct(mu_bar, Sig_bar, y, H, Q, K)
 
 
 def kf_predict(mu, Sig, u, F, B, R) -> tuple[np.ndarray, np.ndarray]:
@@ -261,8 +298,8 @@ def kf_predict(mu, Sig, u, F, B, R) -> tuple[np.ndarray, np.ndarray]:
     -------
     (mu_bar, Sig_bar) : shapes (n,), (n, n)
     """
-    mu_bar, Sig_bar = _predict(*_check_step_inputs(mu, Sig, u, F, B, R))
-    return mu_bar, _symmetric(Sig_bar)
+    mu_bar, Sig_bar = _predict(*_check_predict_inputs(mu, Sig, u, F, B, R))
+    return mu_bar, symmetric(Sig_bar)
 
 
 def kf_gain(Sig_bar, H, Q) -> tuple[np.ndarray, np.ndarray]:
@@ -284,8 +321,9 @@ def kf_gain(Sig_bar, H, Q) -> tuple[np.ndarray, np.ndarray]:
     """
     Sig_bar = v.covariance(Sig_bar, "Sig_bar")
     H = v.matrix(H, "H", None, Sig_bar.shape[0])
-    Q = v.covariance(Q, "Q", H.shape[0], constant=True)
-    return _gain(Sig_bar, H, Q)
+    Q = v.covariance(Q, "Q", H.shape[0])
+    S = innovation_covariance(Sig_bar, H, Q)
+    return S, gain(Sig_bar @ H.T, S)
 
 
 def kf_update(mu_bar, Sig_bar, z, H, Q) -> tuple[np.ndarray, np.ndarray]:
@@ -314,7 +352,9 @@ def kf_update(mu_bar, Sig_bar, z, H, Q) -> tuple[np.ndarray, np.ndarray]:
     -------
     (mu, Sig) : shapes (n,), (n, n)
     """
-    return _update(*_check_update_inputs(mu_bar, Sig_bar, z, H, Q))
+    mu_bar, Sig_bar, z, Q = v.update_inputs(mu_bar, Sig_bar, z, Q)
+    H = v.matrix(H, "H", z.size, mu_bar.size)
+    return _update(mu_bar, Sig_bar, z, H, Q)
 
 
 def kf_step(mu, Sig, u, z, F, B, H, R, Q) -> tuple[np.ndarray, np.ndarray]:
@@ -327,11 +367,10 @@ def kf_step(mu, Sig, u, z, F, B, H, R, Q) -> tuple[np.ndarray, np.ndarray]:
     -------
     (mu, Sig) : shapes (n,), (n, n)
     """
-    mu, Sig, u, F, B, R = _check_step_inputs(mu, Sig, u, F, B, R)
-    mu_bar, Sig_bar = _predict(mu, Sig, u, F, B, R)
+    mu_bar, Sig_bar = _predict(*_check_predict_inputs(mu, Sig, u, F, B, R))
     if z is None:
-        return mu_bar, _symmetric(Sig_bar)
+        return mu_bar, symmetric(Sig_bar)
     z = v.vector(z, "z")
-    H = v.constant_matrix(H, "H", z.size, mu.size)
-    Q = v.covariance(Q, "Q", z.size, constant=True)
+    H = v.matrix(H, "H", z.size, mu_bar.size)
+    Q = v.covariance(Q, "Q", z.size)
     return _update(mu_bar, Sig_bar, z, H, Q)

@@ -11,6 +11,7 @@ from collections.abc import Callable
 import numpy as np
 
 from .. import _validate as v
+from .linalg import gain, symmetric
 
 
 def _sqrt_psd(A: np.ndarray) -> np.ndarray:
@@ -40,8 +41,10 @@ def sigma_points(mu, Sig, lam: float, beta: float = 0.0) -> tuple[np.ndarray, np
     lam : float
         Spread parameter; ``n + lam`` must be > 0.
     beta : float
-        Added to the centre covariance weight, ``wc_0 = w_0 + beta``
-        (0 by default; 2 is optimal for Gaussian priors in the scaled transform).
+        Added to the centre covariance weight, ``wc_0 = w_0 + beta`` (0 by
+        default, the plain transform of the lesson).  The scaled unscented
+        transform with parameters α, κ and β (β = 2 is optimal for a Gaussian
+        prior) is this one with ``lam = α²(n + κ) - n`` and ``beta = 1 - α² + β``.
 
     Returns
     -------
@@ -82,7 +85,7 @@ def _recombine(Y, wm, wc, residual, mean, vectorized=False):
     y_mean = wm @ Y if mean is None else np.asarray(mean(Y, wm), dtype=float)  # sum w_i Y_i
     dY = _differences(Y, y_mean, residual, vectorized)
     cov = (wc[:, None] * dY).T @ dY  # sum w_i (Y_i - y)(Y_i - y)^T
-    return y_mean, 0.5 * (cov + cov.T), dY
+    return y_mean, symmetric(cov), dY
 
 
 def _push(f, chi, name, k=None, vectorized=False):
@@ -103,6 +106,8 @@ def unscented_transform(
     residual: Callable | None = None,
     mean: Callable | None = None,
     vectorized: bool = False,
+    *,
+    beta: float = 0.0,
 ) -> tuple[np.ndarray, np.ndarray]:
     r"""Push ``N(mu, Sig)`` through a nonlinear ``f`` with sigma points.
 
@@ -127,6 +132,11 @@ def unscented_transform(
         Call the model (and ``residual``) once with every sigma point as a row of
         a ``(2n+1, n)`` array instead of once per point; the models in
         :mod:`kfcourse.models` accept such stacks.  Same result, much faster.
+    beta : float
+        Added to the centre covariance weight, ``wc_0 = w_0 + beta`` (0 by
+        default, the plain transform of the lesson).  The scaled unscented
+        transform with parameters α, κ and β is this one with
+        ``lam = α²(n + κ) - n`` and ``beta = 1 - α² + β``.
 
     Returns
     -------
@@ -134,7 +144,7 @@ def unscented_transform(
     """
     f = v.function(f, "f")
     residual, mean = v.optional_function(residual, "residual"), v.optional_function(mean, "mean")
-    chi, wm, wc = sigma_points(mu, Sig, lam)
+    chi, wm, wc = sigma_points(mu, Sig, lam, beta)
     y_mean, cov, _ = _recombine(_push(f, chi, "f", None, vectorized), wm, wc, residual, mean, vectorized)
     return y_mean, cov
 
@@ -180,6 +190,8 @@ def ukf_predict(
     residual: Callable | None = None,
     mean: Callable | None = None,
     vectorized: bool = False,
+    *,
+    beta: float = 0.0,
 ) -> tuple[np.ndarray, np.ndarray]:
     r"""UKF predict step: sigma points of the belief through the motion model.
 
@@ -206,6 +218,11 @@ def ukf_predict(
         Call the model and the residual hooks once with every sigma point as a
         row of a ``(2n+1, n)`` array instead of once per point (the models in
         :mod:`kfcourse.models` accept such stacks).  Same result, much faster.
+    beta : float
+        Added to the centre covariance weight, ``wc_0 = w_0 + beta`` (0 by
+        default, the plain transform of the lesson).  The scaled unscented
+        transform with parameters α, κ and β is this one with
+        ``lam = α²(n + κ) - n`` and ``beta = 1 - α² + β``.
 
     Returns
     -------
@@ -213,11 +230,11 @@ def ukf_predict(
     """
     mu = v.vector(mu, "mu")
     n = mu.size
-    R = v.covariance(R, "R", n, constant=True)
+    Sig = v.covariance(Sig, "Sig", n)
+    R = v.covariance(R, "R", n)
     g = v.function(g, "g")
     residual, mean = v.optional_function(residual, "residual"), v.optional_function(mean, "mean")
-    Sig = v.covariance(Sig, "Sig", n)
-    chi, wm, wc = _sigma_points(mu, Sig, v.scalar(lam, "lam"))  # mu and Sig checked once
+    chi, wm, wc = _sigma_points(mu, Sig, v.scalar(lam, "lam"), v.scalar(beta, "beta"))
     Y = _push(lambda x: g(x, u), chi, "g", n, vectorized)
     mu_bar, Sig_bar, _ = _recombine(Y, wm, wc, residual, mean, vectorized)
     return mu_bar, Sig_bar + R
@@ -234,6 +251,8 @@ def ukf_update(
     mean: Callable | None = None,
     x_residual: Callable | None = None,
     vectorized: bool = False,
+    *,
+    beta: float = 0.0,
 ) -> tuple[np.ndarray, np.ndarray]:
     r"""UKF update step: the gain from the cross-covariance of the sigma clouds.
 
@@ -265,30 +284,29 @@ def ukf_update(
         Call the model and the residual hooks once with every sigma point as a
         row of a ``(2n+1, n)`` array instead of once per point (the models in
         :mod:`kfcourse.models` accept such stacks).  Same result, much faster.
+    beta : float
+        Added to the centre covariance weight, ``wc_0 = w_0 + beta`` (0 by
+        default, the plain transform of the lesson).  The scaled unscented
+        transform with parameters α, κ and β is this one with
+        ``lam = α²(n + κ) - n`` and ``beta = 1 - α² + β``.
 
     Returns
     -------
     (mu, Sig) : shapes (n,), (n, n)
     """
-    mu_bar = v.vector(mu_bar, "mu_bar")
-    z = v.vector(z, "z")
+    mu_bar, Sig_bar, z, Q = v.update_inputs(mu_bar, Sig_bar, z, Q)
     k = z.size
-    Q = v.covariance(Q, "Q", k, constant=True)
     h = v.function(h, "h")
     residual, mean = v.optional_function(residual, "residual"), v.optional_function(mean, "mean")
     x_residual = v.optional_function(x_residual, "x_residual")
-    Sig_bar = v.covariance(Sig_bar, "Sig_bar", mu_bar.size)  # checked here once, named Sig_bar
-    chi, wm, wc = _sigma_points(mu_bar, Sig_bar, v.scalar(lam, "lam"))
+    chi, wm, wc = _sigma_points(mu_bar, Sig_bar, v.scalar(lam, "lam"), v.scalar(beta, "beta"))
     Z = _push(h, chi, "h", k, vectorized)
     z_hat, S, dZ = _recombine(Z, wm, wc, residual, mean, vectorized)
     S = S + Q  # innovation covariance
     dX = _differences(chi, mu_bar, x_residual, vectorized)
     Sxz = (wc[:, None] * dX).T @ dZ  # cross-covariance Sig_xz
-    try:
-        K = np.linalg.solve(S, Sxz.T).T  # K = Sig_xz S^-1
-    except np.linalg.LinAlgError:
-        raise ValueError("Q: the innovation covariance S is singular") from None
+    K = gain(Sxz, S)  # K = Sig_xz S^-1
     y = z - z_hat if residual is None else np.asarray(residual(z, z_hat), dtype=float)  # innovation
     mu = mu_bar + K @ y
     Sig = Sig_bar - K @ S @ K.T  # Sig = Sig_bar - K S K^T
-    return mu, 0.5 * (Sig + Sig.T)
+    return mu, symmetric(Sig)

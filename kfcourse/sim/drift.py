@@ -30,7 +30,7 @@ def drift_sigma(step_std: float, n):
     -------
     float or ndarray (m)
     """
-    s = v.variance(step_std, "step_std")
+    s = v.non_negative(step_std, "step_std", "a standard deviation", "m")
     out = s * np.sqrt(_steps(n))
     return float(out) if out.ndim == 0 else out
 
@@ -67,7 +67,7 @@ def monte_carlo_drift(step_std: float, n, n_robots: int = 10_000, seed: int = 0)
     -------
     float or ndarray (m), same shape as ``n``
     """
-    s = v.variance(step_std, "step_std")
+    s = v.non_negative(step_std, "step_std", "a standard deviation", "m")
     steps = _steps(n).astype(int)
     if (steps < 1).any():
         raise ValueError(f"n must be >= 1, got {n!r}")

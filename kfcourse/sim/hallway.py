@@ -11,9 +11,7 @@ from ..filters.bayes import BOUNDARIES
 def motion_kernel(reliability: float) -> dict[int, float]:
     """Kernel for "move one cell right": lands right with ``reliability``, else
     stalls or overshoots by one, each half the remaining probability."""
-    p = v.variance(reliability, "reliability")
-    if p > 1:
-        raise ValueError(f"reliability must be a probability in [0, 1], got {p}")
+    p = v.probability(reliability, "reliability")
     return {1: p, 0: (1 - p) / 2, 2: (1 - p) / 2}
 
 
@@ -30,7 +28,7 @@ def move(cell: int, kernel: dict[int, float], rng: np.random.Generator, n_cells:
 
 def read_door(cell: int, doors, reliability: float, rng: np.random.Generator) -> bool:
     """The door sensor: reports the truth (door or no door) with ``reliability``."""
-    p = v.variance(reliability, "reliability")
+    p = v.probability(reliability, "reliability")
     truth = bool(np.asarray(doors, bool)[cell])
     return truth if rng.random() < p else not truth
 
@@ -46,8 +44,6 @@ def door_likelihood(doors, saw_door: bool, reliability: float) -> np.ndarray:
     -------
     ndarray, shape (n_cells,)
     """
-    p = v.variance(reliability, "reliability")
-    if p > 1:
-        raise ValueError(f"reliability must be a probability in [0, 1], got {p}")
+    p = v.probability(reliability, "reliability")
     is_door = np.asarray(doors, bool)
     return np.where(is_door == bool(saw_door), p, 1.0 - p)

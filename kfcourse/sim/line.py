@@ -63,8 +63,8 @@ def simulate_line(
     """
     if isinstance(n_steps, bool) or not isinstance(n_steps, (int, np.integer)) or n_steps < 2:
         raise ValueError(f"n_steps must be a whole number >= 2, got {n_steps!r}")
-    step_std = v.variance(step_std, "step_std", positive=True)
-    sensor_std = v.variance(sensor_std, "sensor_std", positive=True)
+    step_std = v.positive(step_std, "step_std", "a standard deviation", "m")
+    sensor_std = v.positive(sensor_std, "sensor_std", "a standard deviation", "m")
     speed = v.scalar(speed, "speed")
     rng = np.random.default_rng(seed)
     w = rng.standard_normal(n_steps)
