@@ -76,10 +76,16 @@ def trust_slider(seed: int = 0) -> Demo:
             ax.set_ylim(0, top)
             renderer.invalidate()
         update_gain_gauge(gauge, model.K)
+        narrowest = min(model.var_pred, model.var_meas)
+        if var_f < narrowest:
+            verdict = f"σ² = {var_f:.3g} < min({model.var_pred:.3g}, {model.var_meas:.3g}): narrower than both inputs"
+        else:
+            verdict = (
+                f"σ² = {var_f:.3g} ≥ min({model.var_pred:.3g}, {model.var_meas:.3g}): not narrower than both inputs"
+            )
         info.set_text(
             f"K = {model.var_pred:.3g} / ({model.var_pred:.3g} + {model.var_meas:.3g}) = {model.K:.3f}"
-            f"      fused: μ = {mu_f:.3f}, σ² = {var_f:.3g}\n"
-            f"σ² = {var_f:.3g} < min({model.var_pred:.3g}, {model.var_meas:.3g}): narrower than both inputs"
+            f"      fused: μ = {mu_f:.3f}, σ² = {var_f:.3g}\n{verdict}"
         )
 
     caption = (
