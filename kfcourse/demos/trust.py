@@ -6,6 +6,7 @@ import ipywidgets as widgets
 import numpy as np
 
 from ..filters.gaussian import fuse
+from ..filters.kalman import kf_1d_gain
 from ..plots import palette
 from ..plots.artists import gain_gauge, gaussian_curve, update_gain_gauge, update_gaussian_curve
 from ..plots.style import FigureRenderer, new_figure, nice_limit
@@ -23,7 +24,7 @@ class TrustModel:
 
     @property
     def K(self) -> float:
-        return self.var_pred / (self.var_pred + self.var_meas)  # K = var_bar / (var_bar + var_Q)
+        return kf_1d_gain(self.var_pred, Q=self.var_meas)  # K = var_bar / (var_bar + var_Q), c = 1
 
     def set_mu_pred(self, mu_pred: float) -> None:
         self.mu_pred = mu_pred
