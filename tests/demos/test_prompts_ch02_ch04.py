@@ -75,7 +75,7 @@ def test_ch02_variance_sliders_stretch_along_x_and_y_and_the_shares_stay(ellipse
 
 def test_ch02_rho_tilts_and_thins_the_ellipse_and_sets_the_off_diagonal(ellipse_demo):
     """Prompt: drag ρ towards +0.9 and then −0.9: the ellipse tilts and thins; the
-    off-diagonal entries of Σ change."""
+    off-diagonal entries of Σ change; its shadow stays ±σx along x and ±σy along y."""
     demo = ellipse_demo
     start = rings(demo)[0]
     start_angle, start_minor = start.angle, min(start.width, start.height)
@@ -86,6 +86,8 @@ def test_ch02_rho_tilts_and_thins_the_ellipse_and_sets_the_off_diagonal(ellipse_
         assert sign * ring.angle > 0  # leans up for ρ > 0, down for ρ < 0
         assert abs(ring.angle) > abs(start_angle)  # tilts further than at ρ = 0.6
         assert min(ring.width, ring.height) < 0.75 * start_minor  # and thins
+        for k, each in zip((1, 2, 3), rings(demo), strict=True):
+            assert shadow(each) == pytest.approx((k * math.sqrt(2.0), k * 1.0))  # the shadow stays put
         sig = shown_sigma(demo)
         assert sig[0, 1] == pytest.approx(sign * off, abs=0.006)
         assert sig[1, 0] == pytest.approx(sign * off, abs=0.006)
