@@ -6,6 +6,7 @@ import ipywidgets as widgets
 import numpy as np
 
 from ..filters.gaussian import fuse
+from ..filters.kalman import kf_1d_gain
 from ..plots import palette
 from ..plots.artists import gain_gauge, gaussian_curve, update_gain_gauge, update_gaussian_curve
 from ..plots.style import FigureRenderer, new_figure, nice_limit
@@ -23,7 +24,7 @@ class TrustModel:
 
     @property
     def K(self) -> float:
-        return self.var_pred / (self.var_pred + self.var_meas)  # K = var_bar / (var_bar + var_Q)
+        return kf_1d_gain(self.var_pred, Q=self.var_meas)  # K = var_bar / (var_bar + var_Q), c = 1
 
     def set_mu_pred(self, mu_pred: float) -> None:
         self.mu_pred = mu_pred
@@ -76,10 +77,16 @@ def trust_slider(seed: int = 0) -> Demo:
             ax.set_ylim(0, top)
             renderer.invalidate()
         update_gain_gauge(gauge, model.K)
+        narrowest = min(model.var_pred, model.var_meas)
+        if var_f < narrowest:
+            verdict = f"σ² = {var_f:.3g} < min({model.var_pred:.3g}, {model.var_meas:.3g}): narrower than both inputs"
+        else:
+            verdict = (
+                f"σ² = {var_f:.3g} ≥ min({model.var_pred:.3g}, {model.var_meas:.3g}): not narrower than both inputs"
+            )
         info.set_text(
             f"K = {model.var_pred:.3g} / ({model.var_pred:.3g} + {model.var_meas:.3g}) = {model.K:.3f}"
-            f"      fused: μ = {mu_f:.3f}, σ² = {var_f:.3g}\n"
-            f"σ² = {var_f:.3g} < min({model.var_pred:.3g}, {model.var_meas:.3g}): narrower than both inputs"
+            f"      fused: μ = {mu_f:.3f}, σ² = {var_f:.3g}\n{verdict}"
         )
 
     caption = (

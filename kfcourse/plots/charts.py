@@ -11,6 +11,7 @@ from matplotlib.ticker import MaxNLocator
 
 from ..filters.gaussian import gaussian_pdf
 from . import palette
+from .artists import covariance_ellipse
 from .style import new_figure
 
 
@@ -70,3 +71,109 @@ def convergence_chart(K, var_post, K_steady: float, var_steady: float):
         ax.xaxis.set_major_locator(MaxNLocator(integer=True))
     ax_v.legend()
     return fig
+
+
+def blend_variance_chart(var1: float, var2: float):
+    r"""Chapter 4: the variance of every unbiased blend of two independent estimates.
+
+    The blend :math:`(1 - w)\,\mu_1 + w\,\mu_2` has variance
+    :math:`(1 - w)^2\sigma_1^2 + w^2\sigma_2^2`, a parabola in :math:`w` whose lowest
+    point is at :math:`w = K = \sigma_1^2 / (\sigma_1^2 + \sigma_2^2)`, the Kalman gain.
+    Introduced in chapter 4.
+
+    Parameters
+    ----------
+    var1 : float
+        Variance of the first estimate (the prediction), > 0; the blend at ``w = 0``.
+    var2 : float
+        Variance of the second estimate (the measurement), > 0; the blend at ``w = 1``.
+
+    Returns
+    -------
+    matplotlib.figure.Figure
+    """
+    var1, var2 = _positive(var1, "var1"), _positive(var2, "var2")
+    w = np.linspace(0.0, 1.0, 401)
+    var_blend = (1 - w) ** 2 * var1 + w**2 * var2  # Var(w) = (1 - w)^2 var1 + w^2 var2
+    K = var1 / (var1 + var2)  # the weight with the smallest variance
+    var_min = var1 * var2 / (var1 + var2)  # Var(K) = var1 var2 / (var1 + var2)
+    fig, ax = new_figure(6.0, 3.0)
+    ax.plot(w, var_blend, color=palette.INK, lw=1.8, label="variance of the blend")
+    ax.plot([0.0], [var1], "o", color=palette.PREDICTION, ms=8, label=f"w = 0: prediction only, {var1:.3g}")
+    ax.plot([1.0], [var2], "o", color=palette.MEASUREMENT, ms=8, label=f"w = 1: measurement only, {var2:.3g}")
+    ax.axvline(K, color=palette.ESTIMATE, ls="--", lw=1.2)
+    ax.plot([K], [var_min], "o", color=palette.ESTIMATE, ms=9, label=f"minimum at w = K = {K:.3f}: {var_min:.3g}")
+    ax.set_xlim(-0.03, 1.03)
+    ax.set_ylim(0, 1.08 * max(var1, var2))
+    ax.set_xlabel("weight w of the measurement in the blend (1 − w)·μ₁ + w·μ₂")
+    ax.set_ylabel("variance of the blend")
+    ax.legend(loc="upper center", fontsize=8)
+    return fig
+
+
+def ellipse_shadow_chart(Sig, nsig: float = 1.0):
+    r"""Chapter 2: a 2-D covariance ellipse, its semi-axes and its shadow on the x and y axes.
+
+    The ``nsig``-sigma ellipse of ``N(0, Sig)`` (teal) with its two semi-axes
+    :math:`k\sqrt{\lambda_i}` along the eigenvectors (teal lines), and the box
+    :math:`\pm k\sqrt{\Sigma_{xx}}`, :math:`\pm k\sqrt{\Sigma_{yy}}` that the ellipse
+    exactly fits in (dashed): the diagonal of Σ sets the shadow, not the axes.
+    Introduced in chapter 2.
+
+    Parameters
+    ----------
+    Sig : array_like, shape (2, 2)
+        Covariance, symmetric positive semi-definite.
+    nsig : float
+        Number of standard deviations ``k`` (> 0).
+
+    Returns
+    -------
+    matplotlib.figure.Figure
+    """
+    Sig = np.asarray(Sig, float)
+    if Sig.shape != (2, 2):
+        raise ValueError(f"Sig must have shape (2, 2), got {Sig.shape}")
+    k = _positive(nsig, "nsig")
+    fig, ax = new_figure(4.6, 3.4)
+    covariance_ellipse(ax, (0.0, 0.0), Sig, k, palette.ESTIMATE)  # checks Sig (finite, symmetric, PSD)
+    lam, V = np.linalg.eigh(Sig)  # Σ = V diag(lam) V^T, lam ascending
+    lam = np.clip(lam, 0.0, None)
+    major = V[:, 1] if V[0, 1] >= 0 else -V[:, 1]  # an axis has no sign: draw it pointing right
+    minor = V[:, 0] if V[1, 0] >= 0 else -V[:, 0]  # and this one pointing up
+    ends = {"major": (major, np.sqrt(lam[1]), (6, -10), "left"), "minor": (minor, np.sqrt(lam[0]), (-4, 6), "right")}
+    for name, (axis, length, offset, ha) in ends.items():
+        end = k * length * axis  # semi-axis: k sqrt(lambda_i) along eigenvector i
+        ax.plot([0.0, end[0]], [0.0, end[1]], color=palette.ESTIMATE, lw=1.6)
+        ax.annotate(
+            f"{name} semi-axis\n{k * length:.3g}",
+            end,
+            xytext=offset,
+            textcoords="offset points",
+            ha=ha,
+            color=palette.ESTIMATE,
+            fontsize=8,
+        )
+    sx, sy = k * np.sqrt(Sig[0, 0]), k * np.sqrt(Sig[1, 1])  # shadow: ±k sigma_x, ±k sigma_y
+    ax.plot(
+        [-sx, sx, sx, -sx, -sx], [-sy, -sy, sy, sy, -sy], "--", color=palette.INK, lw=1.0, label=f"±{k:g}σx, ±{k:g}σy"
+    )
+    ax.set_aspect("equal")
+    top = 1.25 * max(sx, sy)
+    ax.set_xlim(-top, top)
+    ax.set_ylim(-top, top)
+    ax.set_xlabel(f"x   (shadow ±{sx:.3g})")
+    ax.set_ylabel(f"y   (shadow ±{sy:.3g})")
+    ax.legend(loc="lower right", fontsize=8)
+    return fig
+
+
+def _positive(x, name: str) -> float:
+    """A finite number > 0, or a ValueError naming the argument."""
+    try:
+        value = float(x)
+    except (TypeError, ValueError):
+        raise ValueError(f"{name} must be a positive number, got {x!r}") from None
+    if not np.isfinite(value) or value <= 0:
+        raise ValueError(f"{name} must be a finite number > 0, got {x!r}")
+    return value
