@@ -5,45 +5,60 @@ from __future__ import annotations
 import ipywidgets as widgets
 import numpy as np
 
-from ..filters.kalman import kf_1d_cycle
+from ..filters.kalman import kf_1d_gain, kf_1d_predict, kf_1d_update
 from ..plots import palette
 from ..plots.artists import gaussian_curve, update_gaussian_curve
 from ..plots.style import FigureRenderer, new_figure, nice_limit
 from ._base import Demo, button, slider
 
-MU0, VAR0 = 2.0, 0.40  # the lesson's prior: m, m^2
+MU0, VAR0 = 2.0, 0.40  # the lesson's prior at time step 0: m, m^2
 U = 1.0  # m commanded each step
-LESSON_Z = (3.6, 4.7)  # the lesson's first two readings (m)
+LESSON_Z = (3.6, 4.7)  # the lesson's readings at time steps 1 and 2 (m)
+SENSOR_VAR = 0.1  # m^2: noise of the simulated readings after step 2 (the lesson's Q)
 HALF_WIDTH = 3.5  # m shown either side of the belief
 
 
 class StepThroughModel:
-    """Model: the actions pressed so far, replayed with the current R and Q."""
+    """Model: the buttons pressed so far, replayed with the current R and Q.
+
+    Readings belong to time steps.  The robot starts at time step 0; the k-th
+    Predict moves it to time step k, and an Update reads the sensor there
+    (:meth:`reading`).  Each time step has one reading, so an Update is refused,
+    with a note, before the first Predict and once this step's reading is in
+    the belief: using it again would count the same evidence twice and make
+    the filter overconfident.
+    """
 
     def __init__(self, seed: int, R: float = 0.2, Q: float = 0.1):
-        rng = np.random.default_rng(seed)
-        k = np.arange(len(LESSON_Z), 200)
-        later = MU0 + (k + 1) * U + np.sqrt(0.1) * rng.standard_normal(k.size)  # true walk + sensor noise
-        self.readings = np.concatenate([LESSON_Z, later])
+        self.seed = seed
         self.R, self.Q = R, Q
         self.actions: list[str] = []
         self.replay()
 
-    def press(self, action: str) -> None:
-        if action == "reset":
-            self.actions = []
-        else:
-            self.actions.append(action)
-        self.replay()
+    def reading(self, k: int) -> float:
+        """The sensor reading at time step ``k >= 1`` (m): the lesson's 3.6 and 4.7, then
+        seeded readings of a robot that is at ``MU0 + k U`` metres."""
+        if k <= len(LESSON_Z):
+            return LESSON_Z[k - 1]
+        noise = np.random.default_rng([self.seed, k]).standard_normal()  # the same for a seed and step
+        return MU0 + k * U + float(np.sqrt(SENSOR_VAR) * noise)
 
     def predict(self) -> None:
-        self.press("predict")
+        self.actions.append("predict")
+        self.replay()
 
     def update(self) -> None:
-        self.press("update")
+        if self.fresh:
+            self.actions.append("update")
+            self.replay()
+        elif self.k == 0:
+            self.note = "No reading at step 0: press Predict first."
+        else:
+            self.note = f"Step {self.k}'s reading is already used:\nusing it again would count it twice. Press Predict."
 
     def reset(self) -> None:
-        self.press("reset")
+        self.actions = []
+        self.replay()
 
     def set_R(self, R: float) -> None:
         self.R = R
@@ -56,27 +71,32 @@ class StepThroughModel:
     def replay(self) -> None:
         """Recompute every step from the prior with the current R and Q."""
         mu, var = MU0, VAR0
+        self.k = 0  # the time step the robot is at
+        self.fresh = False  # whether step k's reading is still unused
         self.before = (mu, var)
         self.predicted = None
         self.z = None
         self.K = None
         self.phase = "prior"
+        self.note = ""
         self.rows = []
-        n_updates = 0
         for action in self.actions:
             self.before = (mu, var)
             if action == "predict":
-                cyc = kf_1d_cycle(mu, var, U, None, R=self.R, Q=self.Q)
-                self.predicted = (cyc.mu_bar, cyc.var_bar)
+                self.k += 1
+                self.fresh = True
+                mu, var = kf_1d_predict(mu, var, U, R=self.R)  # equations (1), (2)
+                self.predicted = (mu, var)
                 self.z, self.K, self.phase = None, None, "predicted"
             else:
-                z = float(self.readings[n_updates % self.readings.size])
-                n_updates += 1
-                cyc = kf_1d_cycle(mu, var, 0.0, z, b=0.0, R=0.0, Q=self.Q)  # update only
+                z = self.reading(self.k)
+                self.fresh = False
+                K = kf_1d_gain(var, Q=self.Q)  # equation (3)
+                mu_new, var_new = kf_1d_update(mu, var, z, Q=self.Q)  # equations (4), (5)
                 self.predicted = (mu, var)
-                self.z, self.K, self.phase = z, cyc.K, "updated"
-                self.rows.append((len(self.rows) + 1, mu, var, z, cyc.innovation, cyc.K, cyc.mu, cyc.var))
-            mu, var = cyc.mu, cyc.var
+                self.z, self.K, self.phase = z, K, "updated"
+                self.rows.append((self.k, mu, var, z, z - mu, K, mu_new, var_new))
+                mu, var = mu_new, var_new
         self.mu, self.var = mu, var
 
 
@@ -84,21 +104,23 @@ def _table(rows) -> str:
     """The last few completed updates as the lesson's table."""
     cell = "style='padding:0 8px;text-align:right'"
     bar = "<span style='text-decoration:overline'>{}</span>"
-    names = ("update", bar.format("μ"), bar.format("σ") + "²", "z", "z − " + bar.format("μ"), "K", "μ", "σ²")
+    names = ("step", bar.format("μ"), bar.format("σ") + "²", "z", "z − " + bar.format("μ"), "K", "μ", "σ²")
     head = "".join(f"<th {cell}>{h}</th>" for h in names)
     body = "".join(
         f"<tr><td {cell}>{row[0]}</td>" + "".join(f"<td {cell}>{c:.3f}</td>" for c in row[1:]) + "</tr>"
         for row in rows[-4:]
     )
     if not rows:
-        return "<i style='font-size:12px'>Each completed Update adds a row here, as in the lesson's table.</i>"
+        return "<i style='font-size:12px'>Each Update adds a row here for its time step, as in the lesson's table.</i>"
     return f"<table style='font-family:monospace;font-size:12px'><tr>{head}</tr>{body}</table>"
 
 
 def step_through(seed: int = 0) -> Demo:
     """Demo "step through" (chapter 3): press Predict and Update to walk the
     scalar Kalman filter one half-step at a time, starting from the lesson's
-    prior N(2.0, 0.40) and readings 3.6, 4.7.
+    prior N(2.0, 0.40) at time step 0.  The k-th Predict moves the robot to
+    time step k; an Update uses that step's reading (the lesson's 3.6 and 4.7
+    at steps 1 and 2) and is refused if the step has none left.
 
     Returns
     -------
@@ -152,19 +174,24 @@ def step_through(seed: int = 0) -> Demo:
             ax.set_xlim(lo, hi)
             ax.set_ylim(0, top)
             renderer.invalidate()
-        if m.phase == "prior":
-            text = f"prior  μ = {m.mu:.3f}, σ² = {m.var:.3f}\npress Predict"
+        if m.note:
+            text = m.note
+        elif m.phase == "prior":
+            text = f"step 0, prior  μ = {m.mu:.3f}, σ² = {m.var:.3f}\npress Predict"
         elif m.phase == "predicted":
-            text = rf"Predict: $\bar\mu$ = {m.mu:.3f}, $\bar\sigma^2$ = {m.var:.3f} (grew by R)"
+            text = rf"Predict to step {m.k}: $\bar\mu$ = {m.mu:.3f}, $\bar\sigma^2$ = {m.var:.3f} (grew by R)"
         else:
-            text = f"Update with z = {m.z:.2f}: K = {m.K:.3f}\nμ = {m.mu:.3f}, σ² = {m.var:.3f}"
+            text = f"Update with step {m.k}'s reading z = {m.z:.2f}: K = {m.K:.3f}\nμ = {m.mu:.3f}, σ² = {m.var:.3f}"
         status.set_text(f"{text}\nR = {m.R:.3g}, Q = {m.Q:.3g}")
         table.value = _table(m.rows)
 
     caption = (
         "<b>Step through the 1-D Kalman filter.</b> Dashed teal: the belief before the step; "
         "purple: the prediction; orange: the measurement N(z, Q); teal: the updated belief. "
-        "Press <i>Predict</i> and <i>Update</i> in turn; the sliders replay every step with new R and Q."
+        "Each <i>Predict</i> moves the robot +1 m to the next time step; <i>Update</i> reads the sensor at the step "
+        "the robot is at (3.6 m at step 1, 4.7 m at step 2, then simulated readings). A step has one reading: a "
+        "second Update in a row is refused, since using the same reading twice would count it twice. "
+        "The sliders replay every step with new R and Q."
     )
     return Demo(
         name="step-through",
@@ -174,7 +201,10 @@ def step_through(seed: int = 0) -> Demo:
         draw=draw,
         controls={
             "predict": (button("Predict", icon="arrow-right", tooltip="Move +1 m: shift and widen"), model.predict),
-            "update": (button("Update", icon="eye", tooltip="Read the sensor: blend and narrow"), model.update),
+            "update": (
+                button("Update", icon="eye", tooltip="Read the sensor at this time step: blend and narrow"),
+                model.update,
+            ),
             "reset": (button("Reset", icon="undo", tooltip="Back to the prior N(2.0, 0.40)"), model.reset),
             "R": (log_slider("process noise R", model.R), model.set_R),
             "Q": (log_slider("measurement noise Q", model.Q), model.set_Q),

@@ -22,6 +22,7 @@ from .artists import (
     update_robot,
 )
 from .charts import convergence_chart, drift_chart, samples_chart
+from .runs import kf_run_chart
 from .style import FigureRenderer, new_figure
 
 __all__ = [
@@ -33,6 +34,7 @@ __all__ = [
     "drift_chart",
     "gain_gauge",
     "gaussian_curve",
+    "kf_run_chart",
     "landmarks",
     "new_figure",
     "palette",

@@ -5,6 +5,7 @@ from .drift import bias_drift, drift_sigma, monte_carlo_drift
 from .hallway import door_likelihood, motion_kernel, move, read_door
 from .line import LineRun, simulate_line
 from .robot import DEFAULT_LANDMARKS, RobotRun, loop_controls, simulate_robot
+from .walk import simulate_walk
 
 __all__ = [
     "DEFAULT_LANDMARKS",
@@ -20,4 +21,5 @@ __all__ = [
     "read_door",
     "simulate_line",
     "simulate_robot",
+    "simulate_walk",
 ]

@@ -1,0 +1,157 @@
+"""Chapter 3's "Try this" prompts, each driven through the step-through demo's
+controls exactly as the chapter says, asserting what the chapter promises.
+
+Time steps: the k-th Predict moves the robot to time step k; an Update reads
+the sensor at that time step (3.6 m at step 1, 4.7 m at step 2, then seeded
+readings of a robot at 2 + k metres).
+"""
+
+from __future__ import annotations
+
+import ipywidgets as widgets
+import numpy as np
+import pytest
+
+import kfcourse as kf
+from kfcourse.plots import palette
+
+
+def demo():
+    return kf.demos.step_through(seed=0)
+
+
+def press(d, *keys):
+    for key in keys:
+        d.controls[key].click()
+
+
+def slide_to_max(d, key):
+    control = d.controls[key]
+    d.controls[key].value = control.base**control.max if isinstance(control, widgets.FloatLogSlider) else control.max
+
+
+def table_html(d) -> str:
+    (table,) = [w for w in d.children if isinstance(w, widgets.HTML) and "kf-caption" not in w._dom_classes]
+    return table.value
+
+
+def visible_curve(d, colour, linestyle="-"):
+    """The y-values of the one visible solid curve of a colour in the picture."""
+    (ax,) = d.renderer.fig.axes
+    found = [
+        line.get_ydata()
+        for line in ax.get_lines()
+        if line.get_visible()
+        and line.get_color() == colour
+        and line.get_linestyle() == linestyle
+        and len(line.get_xdata()) > 2
+    ]
+    assert len(found) == 1, f"{len(found)} visible curves of colour {colour}"
+    return np.asarray(found[0], float)
+
+
+def status_text(d) -> str:
+    (ax,) = d.renderer.fig.axes
+    return "\n".join(t.get_text() for t in ax.texts if t.get_visible())
+
+
+def test_predict_update_predict_update_reproduces_cycles_1_and_2():
+    """Try this 1: Predict, Update, Predict, Update; the table reproduces cycles 1 and 2."""
+    d = demo()
+    press(d, "predict", "update", "predict", "update")
+    c1 = kf.kf_1d_cycle(2.0, 0.40, u=1.0, z=3.6, R=0.20, Q=0.10)
+    c2 = kf.kf_1d_cycle(c1.mu, c1.var, u=1.0, z=4.7, R=0.20, Q=0.10)
+    assert len(d.model.rows) == 2
+    for row, k, z, cyc in zip(d.model.rows, (1, 2), (3.6, 4.7), (c1, c2), strict=True):
+        assert row[0] == k
+        assert row[1:] == pytest.approx((cyc.mu_bar, cyc.var_bar, z, cyc.innovation, cyc.K, cyc.mu, cyc.var))
+    html = table_html(d)
+    for number in ("3.000", "0.600", "3.600", "0.857", "3.514", "0.086", "4.700", "0.741", "4.652", "0.074"):
+        assert number in html, number
+
+
+def test_predict_three_times_then_update_uses_the_step_3_reading():
+    """Try this 2: Reset, then Predict three times and Update once; the Update uses step 3's
+    reading (not 3.6, step 1's), so the belief stays with the robot near 5 m."""
+    d = demo()
+    press(d, "predict", "update", "predict", "update")  # where try-this 1 left it
+    press(d, "reset", "predict", "predict", "predict")
+    assert (d.model.mu, d.model.var) == pytest.approx((5.0, 1.0))  # step 3: 2 + 3 m, 0.4 + 3 x 0.2
+    press(d, "update")
+    assert d.model.z != 3.6  # step 1's reading belongs to step 1
+    # the belief moves forward with the robot; step 1's reading would drag it back to 3.73 m
+    assert d.model.mu > 4.5
+    (row,) = d.model.rows
+    z3 = d.model.reading(3)
+    assert row[0] == 3 and row[3] == d.model.z == z3
+    assert abs(z3 - 5.0) < 1.0  # a reading of the robot at step 3, 2 + 3 m
+    assert min(5.0, z3) <= d.model.mu <= max(5.0, z3)  # between the prediction and the reading
+
+
+def test_predict_several_times_widens_the_curve():
+    """Try this 3: Predict several times in a row; the purple curve keeps widening and
+    flattening, its variance growing by R every step."""
+    d = demo()
+    peaks = []
+    for n in range(1, 6):
+        press(d, "predict")
+        assert d.model.var == pytest.approx(0.40 + n * 0.20)
+        peaks.append(visible_curve(d, palette.PREDICTION).max())
+    assert np.all(np.diff(peaks) < 0)  # every Predict flattens it further
+    assert peaks[-1] == pytest.approx(1 / np.sqrt(2 * np.pi * 1.4), rel=0.01)  # the peak of N(., 0.4 + 5 x 0.2)
+
+
+def test_update_twice_in_a_row_is_refused():
+    """Try this 4: Update twice in a row; the second press is refused and the belief does not
+    change (each time step has one reading; using it twice would count it twice)."""
+    d = demo()
+    press(d, "predict", "update")
+    before = (d.model.mu, d.model.var, list(d.model.rows))
+    picture = bytes(d.image.value)
+    press(d, "update")
+    assert (d.model.mu, d.model.var, d.model.rows) == before
+    assert "already used" in status_text(d)
+    assert bytes(d.image.value) != picture  # the refusal is shown
+    press(d, "predict", "update")  # the next step has a fresh reading again
+    assert [row[0] for row in d.model.rows] == [1, 2]
+
+
+def test_update_before_any_predict_is_refused():
+    """The text: before the first Predict there is no reading yet (the robot is at step 0)."""
+    d = demo()
+    press(d, "update")
+    assert (d.model.mu, d.model.var, d.model.rows) == (2.0, 0.40, [])
+    assert "press Predict" in status_text(d)
+
+
+def test_large_Q_makes_K_small_and_teal_hugs_purple():
+    """Try this 5: Q to its largest value, then Predict, Update; K drops below 0.1 and the
+    teal curve hugs the purple one."""
+    d = demo()
+    slide_to_max(d, "Q")
+    press(d, "predict", "update")
+    assert d.model.K < 0.1
+    purple, teal = visible_curve(d, palette.PREDICTION), visible_curve(d, palette.ESTIMATE)
+    assert np.max(np.abs(teal - purple)) < 0.1 * purple.max()
+
+
+def test_large_R_replays_every_step_with_K_near_1():
+    """Try this 6: Predict, Update, Predict, Update, then R to its largest value; both rows
+    are replayed, the gains rise close to 1 and each estimate sits almost on its reading."""
+    d = demo()
+    press(d, "predict", "update", "predict", "update")
+    slide_to_max(d, "R")
+    assert [row[0] for row in d.model.rows] == [1, 2]
+    for row in d.model.rows:
+        assert row[5] > 0.98
+        assert row[6] == pytest.approx(row[3], abs=0.02)
+    assert "0.99" in table_html(d)
+
+
+def test_reset_goes_back_to_the_prior():
+    """Reset (used in try-this 2) goes back to the prior N(2.0, 0.40) at step 0."""
+    d = demo()
+    first = bytes(d.image.value)
+    press(d, "predict", "update", "predict", "reset")
+    assert (d.model.mu, d.model.var, d.model.rows, d.model.phase) == (2.0, 0.40, [], "prior")
+    assert bytes(d.image.value) == first
