@@ -12,6 +12,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
+from .. import _validate as v
 from ..filters.kalman import kf_1d_cycle
 
 
@@ -19,24 +20,6 @@ def _frozen(a) -> np.ndarray:
     a = np.array(a, dtype=float)
     a.flags.writeable = False
     return a
-
-
-def _number(x, name: str) -> float:
-    """A finite real number, or a ValueError naming the argument."""
-    try:
-        x = float(x)
-    except (TypeError, ValueError):
-        raise ValueError(f"{name} must be a real number, got {x!r}") from None
-    if not math.isfinite(x):
-        raise ValueError(f"{name} must be finite, got {x!r}")
-    return x
-
-
-def _variance(x, name: str) -> float:
-    x = _number(x, name)
-    if x < 0:
-        raise ValueError(f"{name} must be a variance >= 0, got {x!r}")
-    return x
 
 
 @dataclass(frozen=True)
@@ -151,15 +134,15 @@ def simulate_walk(
     """
     if isinstance(n_steps, bool) or not isinstance(n_steps, (int, np.integer)) or n_steps < 1:
         raise ValueError(f"n_steps must be a whole number >= 1, got {n_steps!r}")
-    u = _number(u, "u")
-    R_true = _variance(R_true, "R_true")
-    Q_true = _variance(Q_true, "Q_true")
-    R = R_true if R is None else _variance(R, "R")
-    Q = Q_true if Q is None else _variance(Q, "Q")
-    velocity = _number(velocity, "velocity")
-    x0 = _number(x0, "x0")
-    mu0 = x0 if mu0 is None else _number(mu0, "mu0")
-    var0 = _variance(var0, "var0")
+    u = v.scalar(u, "u")
+    R_true = v.variance(R_true, "R_true")
+    Q_true = v.variance(Q_true, "Q_true")
+    R = R_true if R is None else v.variance(R, "R")
+    Q = Q_true if Q is None else v.variance(Q, "Q")
+    velocity = v.scalar(velocity, "velocity")
+    x0 = v.scalar(x0, "x0")
+    mu0 = x0 if mu0 is None else v.scalar(mu0, "mu0")
+    var0 = v.variance(var0, "var0")
     if Q == 0 and R == 0 and var0 == 0:
         raise ValueError("Q must be > 0 when R and var0 are both 0 (the gain would be 0/0)")
 
