@@ -22,6 +22,7 @@ from .artists import (
     update_robot,
 )
 from .charts import convergence_chart, drift_chart, samples_chart
+from .matrix import predict_update_chart
 from .style import FigureRenderer, new_figure
 
 __all__ = [
@@ -36,6 +37,7 @@ __all__ = [
     "landmarks",
     "new_figure",
     "palette",
+    "predict_update_chart",
     "robot",
     "samples_chart",
     "update_beams",
