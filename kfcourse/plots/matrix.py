@@ -69,11 +69,11 @@ def predict_update_chart(
         z = v.scalar(z, "z")
         Q = v.variance(Q, "Q")
 
-    fig, ax = new_figure(6.0, 3.6)
+    fig, ax = new_figure(5.4, 4.4)
     half_width = k * math.sqrt(Q) if z is not None else 0.0
     if z is not None:
         ax.axvspan(z - half_width, z + half_width, color=palette.MEASUREMENT, alpha=0.15, lw=0)
-        ax.axvline(z, color=palette.MEASUREMENT, ls=":", lw=1.8, label=f"reading z ± {k:g}σ (position only)")
+        ax.axvline(z, color=palette.MEASUREMENT, ls=":", lw=1.8, label=f"reading z ± {k:g}σ_Q")
     covariance_ellipse(ax, mu_bar, Sig_bar, nsig=k, color=palette.PREDICTION, label=f"prediction Σ̄ ({k:g}σ)", zorder=3)
     covariance_ellipse(ax, mu, Sig, nsig=k, color=palette.ESTIMATE, label=f"posterior Σ ({k:g}σ)", zorder=3)
     ax.plot(*mu_bar, "o", color=palette.PREDICTION, ms=6, zorder=4)
@@ -89,8 +89,10 @@ def predict_update_chart(
     pad = 0.15 * np.maximum(high - low, 1e-3) + 1e-3  # a margin, and room even for a collapsed belief
     ax.set_xlim(low[0] - pad[0], high[0] + pad[0])
     ax.set_ylim(low[1] - pad[1], high[1] + pad[1])
-    ax.set_aspect("equal", adjustable="box")  # same scale on both axes: the tilt is true
+    span = (high - low) + 2 * pad
+    if 0.25 < span[0] / span[1] < 4.0:
+        ax.set_aspect("equal", adjustable="box")  # one scale on both axes, so the drawn tilt is the true one
     ax.set_xlabel(labels[0])
     ax.set_ylabel(labels[1])
-    ax.legend(loc="upper left", bbox_to_anchor=(1.02, 1.0), fontsize=8)
+    ax.legend(loc="upper center", bbox_to_anchor=(0.5, -0.16), ncol=3, fontsize=8)
     return fig
