@@ -62,7 +62,7 @@ def predict_update_chart(
     mu = v.vector(mu, "mu", 2)
     Sig_bar = v.covariance(Sig_bar, "Sig_bar", 2)
     Sig = v.covariance(Sig, "Sig", 2)
-    k = v.variance(nsig, "nsig", positive=True)
+    k = v.positive(nsig, "nsig", "a number of standard deviations")
     if (z is None) != (Q is None):
         raise ValueError("z and Q must be given together (or both None for no measurement band)")
     if z is not None:
