@@ -21,7 +21,8 @@ from .artists import (
     update_gaussian_curve,
     update_robot,
 )
-from .charts import convergence_chart, drift_chart, samples_chart
+from .charts import blend_variance_chart, convergence_chart, drift_chart, ellipse_shadow_chart, samples_chart
+from .matrix import predict_update_chart
 from .runs import kf_run_chart
 from .style import FigureRenderer, new_figure
 
@@ -29,15 +30,18 @@ __all__ = [
     "FigureRenderer",
     "beams",
     "belief_bars",
+    "blend_variance_chart",
     "convergence_chart",
     "covariance_ellipse",
     "drift_chart",
+    "ellipse_shadow_chart",
     "gain_gauge",
     "gaussian_curve",
     "kf_run_chart",
     "landmarks",
     "new_figure",
     "palette",
+    "predict_update_chart",
     "robot",
     "samples_chart",
     "update_beams",
