@@ -109,10 +109,9 @@ def tracker(seed: int = 0) -> Demo:
     (est_vel,) = ax.plot([], [], color=palette.ESTIMATE, lw=2.5, zorder=4)
     ring = covariance_ellipse(ax, run.z[0], np.eye(2), nsig=2.0, label="2σ ellipse", zorder=4)
     ax.legend(loc="lower left", bbox_to_anchor=(0.0, 1.0), ncols=4, fontsize=9)
-    box = {"facecolor": "white", "alpha": 0.85, "edgecolor": "none"}
-    readout = ax.text(0.01, 0.99, "", transform=ax.transAxes, ha="left", va="top", fontsize=9.5, bbox=box)
-    status = ax.text(0.99, 0.01, "", transform=ax.transAxes, ha="right", va="bottom", fontsize=10, bbox=box)
-    renderer = FigureRenderer(fig, [pings, trail, truth_vel, truth_dot, est_vel, est_dot, ring, readout, status])
+    readout = widgets.HTML()  # text under the picture: no glyphs to render into the PNG
+    readout.add_class("kf-readout")
+    renderer = FigureRenderer(fig, [pings, trail, truth_vel, truth_dot, est_vel, est_dot, ring])
 
     def draw() -> None:
         k, est = model.frame, model.est
@@ -126,12 +125,13 @@ def tracker(seed: int = 0) -> Demo:
         est_vel.set_data(*np.column_stack([p_est, p_est + ARROW_TIME * v_est]))
         update_covariance_ellipse(ring, p_est, est.Sig[k, :2, :2])
         e_est, e_raw = model.errors()
-        readout.set_text(
-            f"t = {run.t[k]:.1f} s   velocity (m/s): estimated ({v_est[0]:+.2f}, {v_est[1]:+.2f}),"
-            f" true ({v_true[0]:+.2f}, {v_true[1]:+.2f})\n"
-            f"mean distance from the truth so far: estimate {e_est:.2f} m, readings {e_raw:.2f} m"
+        readout.value = (
+            f"<div style='font-size:13px;line-height:1.5'>t = {run.t[k]:.1f} s &nbsp; velocity (m/s): "
+            f"<span style='color:{palette.ESTIMATE}'>estimated ({v_est[0]:+.2f}, {v_est[1]:+.2f})</span>, "
+            f"true ({v_true[0]:+.2f}, {v_true[1]:+.2f}) &nbsp; mean distance from the truth so far: "
+            f"estimate {e_est:.2f} m, readings {e_raw:.2f} m<br>"
+            f"<b>K = {model.gain():.3f} &nbsp; {model.regime()}</b></div>"
         )
-        status.set_text(f"K = {model.gain():.3f}   {model.regime()}")
 
     caption = (
         "<b>2-D tracker.</b> Grey: the target's true path, its position now and its true velocity (the line "
@@ -140,7 +140,7 @@ def tracker(seed: int = 0) -> Demo:
         "<i>Run</i> plays time, <i>step</i> scrubs it. <i>Q</i> is the sensor noise the filter "
         "<i>assumes</i> and <i>R</i> the random acceleration it assumes (its process noise): "
         "they retune the filter, the target and the readings stay the same. "
-        "The line at the bottom gives the position gain K and the regime: jittery (K → 1), "
+        "The lines under the picture give the velocities, the mean errors, and the position gain K with its regime: jittery (K → 1), "
         "balanced, or coasting (K → 0)."
     )
     return Demo(
@@ -169,5 +169,5 @@ def tracker(seed: int = 0) -> Demo:
                 model.set_accel_var,
             ),
         },
-        layout=[["play", "frame"], ["Q", "R"]],
+        layout=[readout, ["play", "frame"], ["Q", "R"]],
     )
