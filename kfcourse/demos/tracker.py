@@ -160,7 +160,7 @@ def tracker(seed: int = 0) -> Demo:
                     widgets.FloatLogSlider,
                     "R: assumed acceleration variance (m²/s⁴)",
                     ACCEL_TUNED,
-                    -2,
+                    -3,
                     7,
                     0.1,
                     ".3g",

@@ -46,7 +46,9 @@ def _covariance_stack(x, name: str, N: int, n: int) -> np.ndarray:
     bad = np.flatnonzero(lowest < -_PSD_RTOL * scale)
     if bad.size:
         i = bad[0]
-        raise ValueError(f"{name}[{i}] must be positive semi-definite (a covariance), but has eigenvalue {lowest[i]:.3g}")
+        raise ValueError(
+            f"{name}[{i}] must be positive semi-definite (a covariance), but has eigenvalue {lowest[i]:.3g}"
+        )
     return a
 
 

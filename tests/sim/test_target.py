@@ -27,7 +27,11 @@ from kfcourse.sim.target import (
 
 
 def arrays(record):
-    return {f.name: getattr(record, f.name) for f in dataclasses.fields(record) if isinstance(getattr(record, f.name), np.ndarray)}
+    return {
+        f.name: getattr(record, f.name)
+        for f in dataclasses.fields(record)
+        if isinstance(getattr(record, f.name), np.ndarray)
+    }
 
 
 def test_target_is_seeded_and_immutable():
