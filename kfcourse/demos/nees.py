@@ -66,7 +66,7 @@ class NeesPanel:
         return float(below), float(1.0 - below - above), float(above)
 
     def verdict(self) -> str:
-        below, inside, above = self.fractions()
+        below, _, above = self.fractions()
         if above > 0.5:
             return "over-confident: the ellipse is too small for the real errors"
         if below > 0.5:

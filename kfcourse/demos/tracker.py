@@ -140,8 +140,8 @@ def tracker(seed: int = 0) -> Demo:
         "<i>Run</i> plays time, <i>step</i> scrubs it. <i>Q</i> is the sensor noise the filter "
         "<i>assumes</i> and <i>R</i> the random acceleration it assumes (its process noise): "
         "they retune the filter, the target and the readings stay the same. "
-        "The lines under the picture give the velocities, the mean errors, and the position gain K with its regime: jittery (K → 1), "
-        "balanced, or coasting (K → 0)."
+        "The lines under the picture give both velocities, the mean errors so far, and the position gain K "
+        "with its regime: jittery (K → 1), balanced, or coasting (K → 0)."
     )
     return Demo(
         name="tracker",

@@ -254,10 +254,9 @@ def filter_tracks(batch: TrackBatch, R, Q) -> tuple[np.ndarray, np.ndarray]:
     F, H = constant_velocity(batch.dt, dim=2)
     N, T, _ = batch.truth.shape
     mu_all, Sig_all = np.empty((N, T, 4)), np.empty((N, T, 4, 4))
-    mu0, Sig0 = _start(np.zeros(2), Q)
-    mu = np.zeros((N, 4))
-    mu[:, :2] = batch.z[:, 0]
-    Sig = np.broadcast_to(Sig0, (N, 4, 4)).copy()
+    starts = [_start(z0, Q) for z0 in batch.z[:, 0]]  # each track's first guess, as in filter_target
+    mu = np.array([mu0 for mu0, _ in starts])
+    Sig = np.array([Sig0 for _, Sig0 in starts])
     mu_all[:, 0], Sig_all[:, 0] = mu, Sig
     for k in range(1, T):
         mu, Sig = kf_step_batch(mu, Sig, None, batch.z[:, k], F, None, H, R, Q)

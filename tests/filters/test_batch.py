@@ -76,7 +76,7 @@ def test_exported():
 
 def good():
     rng = np.random.default_rng(4)
-    F, B, H, R, Q = model()
+    F, _, H, R, Q = model()
     mu, Sig = random_beliefs(rng, 6, 4)
     return {"mu": mu, "Sig": Sig, "u": None, "z": rng.normal(size=(6, 2)), "F": F, "B": None, "H": H, "R": R, "Q": Q}
 
