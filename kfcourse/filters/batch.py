@@ -14,9 +14,6 @@ from .. import _validate as v
 
 __all__ = ["kf_step_batch"]
 
-_SYM_RTOL = 1e-9  # relative asymmetry tolerated in a covariance (as in kf_step)
-_PSD_RTOL = 1e-9  # relative negative eigenvalue tolerated in a covariance (as in kf_step)
-
 
 def _stack(x, name: str, N: int | None, n: int | None) -> np.ndarray:
     """A finite (N, n) array: one row per filter."""
@@ -28,13 +25,14 @@ def _stack(x, name: str, N: int | None, n: int | None) -> np.ndarray:
 
 
 def _covariance_stack(x, name: str, N: int, n: int) -> np.ndarray:
-    """A finite (N, n, n) stack of symmetric positive semi-definite matrices, checked all at once."""
+    """A finite (N, n, n) stack of symmetric positive semi-definite matrices, checked all at once
+    with the tolerances of :func:`kfcourse._validate.covariance`."""
     a = v.finite(x, name)
     if a.shape != (N, n, n):
         raise ValueError(f"{name} must have shape ({N}, {n}, {n}), one covariance per filter, got {a.shape}")
     scale = np.abs(a).max(axis=(1, 2))  # (N,)
     asymmetry = np.abs(a - a.transpose(0, 2, 1)).max(axis=(1, 2))
-    bad = np.flatnonzero(asymmetry > _SYM_RTOL * scale)
+    bad = np.flatnonzero(asymmetry > v._SYM_RTOL * scale)
     if bad.size:
         raise ValueError(f"{name}[{bad[0]}] must be a symmetric covariance matrix, got {a[bad[0]].tolist()}")
     try:
@@ -43,7 +41,7 @@ def _covariance_stack(x, name: str, N: int, n: int) -> np.ndarray:
     except np.linalg.LinAlgError:
         pass
     lowest = np.linalg.eigvalsh(a)[:, 0]  # smallest eigenvalue of each
-    bad = np.flatnonzero(lowest < -_PSD_RTOL * scale)
+    bad = np.flatnonzero(lowest < -v._PSD_RTOL * scale)
     if bad.size:
         i = bad[0]
         raise ValueError(

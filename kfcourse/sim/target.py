@@ -90,7 +90,7 @@ def process_noise(dt: float, accel_var: float) -> np.ndarray:
     -------
     R : ndarray, shape (4, 4)
     """
-    dt = v.variance(dt, "dt", positive=True)
+    dt = v.positive(dt, "dt", "a time step", "s")
     accel_var = v.variance(accel_var, "accel_var")
     G = np.vstack([0.5 * dt**2 * np.eye(2), dt * np.eye(2)])  # how an acceleration moves [p, v]
     return accel_var * G @ G.T  # R = sigma_a^2 G G^T
@@ -115,7 +115,7 @@ def simulate_target(seed: int = 0, sensor_std: float = SENSOR_STD) -> TargetRun:
     -------
     TargetRun
     """
-    sensor_std = v.variance(sensor_std, "sensor_std", positive=True)
+    sensor_std = v.positive(sensor_std, "sensor_std", "a standard deviation", "m")
     omega = np.concatenate([np.full(round(duration / DT), rate) for duration, rate in LEGS])  # rad/s per step
     theta = np.cumsum(omega * DT)  # heading (rad)
     vel = SPEED * np.column_stack([np.cos(theta), np.sin(theta)])
@@ -223,9 +223,9 @@ def simulate_tracks(
     for name, n in (("n_tracks", n_tracks), ("n_steps", n_steps)):
         if isinstance(n, bool) or not isinstance(n, (int, np.integer)) or n < 2:
             raise ValueError(f"{name} must be a whole number >= 2, got {n!r}")
-    accel_std = v.variance(accel_std, "accel_std")
-    sensor_std = v.variance(sensor_std, "sensor_std", positive=True)
-    dt = v.variance(dt, "dt", positive=True)
+    accel_std = v.non_negative(accel_std, "accel_std", "a standard deviation", "m/s²")
+    sensor_std = v.positive(sensor_std, "sensor_std", "a standard deviation", "m")
+    dt = v.positive(dt, "dt", "a time step", "s")
     rng = np.random.default_rng(seed)
     F, _ = constant_velocity(dt, dim=2)
     G = np.vstack([0.5 * dt**2 * np.eye(2), dt * np.eye(2)])
