@@ -36,17 +36,15 @@ def _covariance_stack(x, name: str, N: int, n: int) -> np.ndarray:
     if bad.size:
         raise ValueError(f"{name}[{bad[0]}] must be a symmetric covariance matrix, got {a[bad[0]].tolist()}")
     try:
-        np.linalg.cholesky(a)
-        return a  # every one positive definite; otherwise maybe semi-definite: look at the eigenvalues
+        np.linalg.cholesky(a)  # succeeds only if every one is positive definite: the common case
     except np.linalg.LinAlgError:
-        pass
-    lowest = np.linalg.eigvalsh(a)[:, 0]  # smallest eigenvalue of each
-    bad = np.flatnonzero(lowest < -v._PSD_RTOL * scale)
-    if bad.size:
-        i = bad[0]
-        raise ValueError(
-            f"{name}[{i}] must be positive semi-definite (a covariance), but has eigenvalue {lowest[i]:.3g}"
-        )
+        lowest = np.linalg.eigvalsh(a)[:, 0]  # semi-definite is fine: look at the smallest eigenvalue of each
+        bad = np.flatnonzero(lowest < -v._PSD_RTOL * scale)
+        if bad.size:
+            i = bad[0]
+            raise ValueError(
+                f"{name}[{i}] must be positive semi-definite (a covariance), but has eigenvalue {lowest[i]:.3g}"
+            ) from None
     return a
 
 

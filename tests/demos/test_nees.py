@@ -94,3 +94,14 @@ def test_try_sensor_ten_times_better_than_it_is_gives_about_25():
     demo = make()
     set_mistune(demo, "Q", 0.1)
     assert 15 < demo.model.avg_nees[N_STEPS // 2 :].mean() < 35
+
+
+@pytest.mark.parametrize("which", ["R", "Q"])
+def test_factor_extremes_stay_finite_and_on_the_right_side(which):
+    demo = make()
+    m = demo.model
+    for factor, verdict in ((0.01, "over-confident"), (100.0, "timid")):
+        set_mistune(demo, which, factor)
+        assert np.isfinite(m.avg_nees).all() and (m.avg_nees > 0).all()
+        assert m.verdict().startswith(verdict)
+        assert "nan" not in demo.children[2].value.lower()
