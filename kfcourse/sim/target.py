@@ -22,7 +22,7 @@ import numpy as np
 
 from .. import _validate as v
 from ..filters.batch import kf_step_batch
-from ..filters.kalman import kf_gain, kf_predict, kf_update
+from ..filters.kalman import kf_step
 from ..models import constant_velocity
 
 DT = 0.1  # s between readings
@@ -145,9 +145,9 @@ def filter_target(run: TargetRun, R, Q) -> TargetEstimates:
     r"""Track ``run`` with a constant-velocity Kalman filter that assumes noise ``R``, ``Q``.
 
     Starts from the first reading with zero velocity (covariance ``Q`` for the
-    position, ``START_SPEED_STD**2`` for each velocity), then for every later
-    reading runs one :func:`kf_step`, split into :func:`kf_predict`,
-    :func:`kf_gain` and :func:`kf_update` so that the gain can be recorded.
+    position, ``START_SPEED_STD**2`` for each velocity), then runs one
+    :func:`kf_step` for every later reading.  The gains those steps used are
+    recomputed afterwards from the recorded covariances, all steps at once.
     Introduced in chapter 6.
 
     Parameters
@@ -170,10 +170,12 @@ def filter_target(run: TargetRun, R, Q) -> TargetEstimates:
     mu, Sig = _start(run.z[0], Q)
     mu_all[0], Sig_all[0] = mu, Sig
     for k in range(1, T):
-        mu_bar, Sig_bar = kf_predict(mu, Sig, None, F, None, R)  # mu_bar = F mu, Sig_bar = F Sig F^T + R
-        _, K_all[k] = kf_gain(Sig_bar, H, Q)  # K = Sig_bar H^T (H Sig_bar H^T + Q)^-1
-        mu, Sig = kf_update(mu_bar, Sig_bar, run.z[k], H, Q)
+        mu, Sig = kf_step(mu, Sig, None, run.z[k], F, None, H, R, Q)
         mu_all[k], Sig_all[k] = mu, Sig
+    # The gain of every update, all at once from the covariance before it (a stack of T - 1 matrices):
+    Sig_bar = F @ Sig_all[:-1] @ F.T + R  # Sig_bar = F Sig F^T + R
+    S = H @ Sig_bar @ H.T + Q  # innovation covariance S = H Sig_bar H^T + Q
+    K_all[1:] = Sig_bar @ H.T @ np.linalg.inv(S)  # K = Sig_bar H^T S^-1
     return TargetEstimates(_read_only(mu_all), _read_only(Sig_all), _read_only(K_all), _read_only(R), _read_only(Q))
 
 
