@@ -3,8 +3,18 @@ ipywidgets widget: ``kf.demos.hallway(seed=0)``."""
 
 from .covariance import covariance_ellipse
 from .hallway import hallway
+from .nees import nees_panel
 from .raw_vs_filtered import raw_vs_filtered
 from .step_through import step_through
+from .tracker import tracker
 from .trust import trust_slider
 
-__all__ = ["covariance_ellipse", "hallway", "raw_vs_filtered", "step_through", "trust_slider"]
+__all__ = [
+    "covariance_ellipse",
+    "hallway",
+    "nees_panel",
+    "raw_vs_filtered",
+    "step_through",
+    "tracker",
+    "trust_slider",
+]

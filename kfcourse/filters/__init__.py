@@ -1,6 +1,7 @@
 """The math of the course: arrays in, arrays out; no plots, no widgets."""
 
 from .association import associate, mahalanobis
+from .batch import kf_step_batch
 from .bayes import bayes_predict, bayes_update
 from .ekf import ekf_predict, ekf_update
 from .gaussian import add_gaussians, affine_gaussian, ellipse_axes, fuse, gaussian_pdf, mass_inside, mvn_pdf
@@ -39,6 +40,7 @@ __all__ = [
     "kf_gain",
     "kf_predict",
     "kf_step",
+    "kf_step_batch",
     "kf_update",
     "mahalanobis",
     "mass_inside",

@@ -5,21 +5,43 @@ from .drift import bias_drift, drift_sigma, monte_carlo_drift
 from .hallway import door_likelihood, motion_kernel, move, read_door
 from .line import LineRun, simulate_line
 from .robot import DEFAULT_LANDMARKS, RobotRun, loop_controls, simulate_robot
+from .target import (
+    TargetEstimates,
+    TargetRun,
+    TrackBatch,
+    filter_target,
+    filter_tracks,
+    nees,
+    nees_band,
+    process_noise,
+    simulate_target,
+    simulate_tracks,
+)
 from .walk import simulate_walk
 
 __all__ = [
     "DEFAULT_LANDMARKS",
     "LineRun",
     "RobotRun",
+    "TargetEstimates",
+    "TargetRun",
+    "TrackBatch",
     "bias_drift",
     "door_likelihood",
     "drift_sigma",
+    "filter_target",
+    "filter_tracks",
     "loop_controls",
     "monte_carlo_drift",
     "motion_kernel",
     "move",
+    "nees",
+    "nees_band",
+    "process_noise",
     "read_door",
     "simulate_line",
     "simulate_robot",
+    "simulate_target",
+    "simulate_tracks",
     "simulate_walk",
 ]

@@ -17,7 +17,7 @@ from matplotlib.text import Text
 import kfcourse as kf
 from kfcourse.demos.hallway import DOORS
 
-DEMOS = ["raw_vs_filtered", "hallway", "covariance_ellipse", "step_through", "trust_slider"]
+DEMOS = ["raw_vs_filtered", "hallway", "covariance_ellipse", "step_through", "trust_slider", "tracker", "nees_panel"]
 
 
 def make(name, seed=0):

@@ -1,0 +1,320 @@
+"""A target moving in the plane, seen by a noisy position sensor (chapter 6).
+
+Two worlds live here.  :func:`simulate_target` makes one target that drives
+straight, turns, and drives on: the path a student watches in the tracker demo,
+where a constant-velocity filter must cope with turns it does not model.
+:func:`simulate_tracks` makes many targets that follow the constant-velocity model
+exactly (with random accelerations), the world in which a well-tuned filter is
+*consistent*: its covariance matches its real errors, which the NEES measures.
+
+The filter's assumed noise (``R``, ``Q`` passed to :func:`filter_target` and
+:func:`filter_tracks`) is separate from the world's true noise: retuning the
+filter never changes the target.
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass
+from statistics import NormalDist
+
+import numpy as np
+
+from .. import _validate as v
+from ..filters.batch import kf_step_batch
+from ..filters.kalman import kf_step
+from ..models import constant_velocity
+
+DT = 0.1  # s between readings
+SPEED = 2.0  # m/s, the target's constant speed
+SENSOR_STD = 1.0  # m, the world's true position noise (per axis)
+START_SPEED_STD = 2.0  # m/s, the filter's initial velocity uncertainty (per axis)
+
+# The turning target's path: (duration in s, turn rate in rad/s) per leg.
+LEGS = (
+    (3.0, 0.0),
+    (2.0, math.pi / 4),  # 90 degrees left in 2 s
+    (2.5, 0.0),
+    (3.0, -math.pi / 3),  # 180 degrees right in 3 s
+    (2.5, 0.0),
+    (2.0, math.pi / 4),  # 90 degrees left in 2 s
+    (1.0, 0.0),
+)
+
+
+def _read_only(a, dtype=float) -> np.ndarray:
+    a = np.array(a, dtype=dtype)  # a copy, so nobody else holds a writeable view
+    a.flags.writeable = False
+    return a
+
+
+@dataclass(frozen=True)
+class TargetRun:
+    """One turning target and its readings; one row per time step ``k = 0 .. T-1``."""
+
+    t: np.ndarray  #: (T,) time (s)
+    truth: np.ndarray  #: (T, 4) true state [px, py, vx, vy] (m, m, m/s, m/s)
+    z: np.ndarray  #: (T, 2) position readings [zx, zy] (m)
+    turning: np.ndarray  #: (T,) bool: the target is turning at step k
+    dt: float  #: time step (s)
+    sensor_std: float  #: the world's true sensor noise per axis (m)
+    seed: int
+
+
+@dataclass(frozen=True)
+class TargetEstimates:
+    """A filter's output over a :class:`TargetRun`; one row per time step."""
+
+    mu: np.ndarray  #: (T, 4) estimated state [px, py, vx, vy]
+    Sig: np.ndarray  #: (T, 4, 4) estimated covariance
+    K: np.ndarray  #: (T, 4, 2) Kalman gain used at step k (zero at k = 0, the starting guess)
+    R: np.ndarray  #: (4, 4) the process noise the filter assumed
+    Q: np.ndarray  #: (2, 2) the measurement noise the filter assumed
+
+
+def process_noise(dt: float, accel_var: float) -> np.ndarray:
+    r"""Process noise ``R`` of a constant-velocity model driven by random accelerations.
+
+    A constant acceleration :math:`a \sim N(0, \sigma_a^2 I)` held for one step moves
+    the state by :math:`G a` with :math:`G = [\tfrac{\Delta t^2}{2} I;\ \Delta t\, I]`,
+    so :math:`R = \sigma_a^2\, G G^\top`.  Introduced in chapter 6.
+
+    Parameters
+    ----------
+    dt : float
+        Time step (s), > 0.
+    accel_var : float
+        Acceleration variance :math:`\sigma_a^2` per axis (m²/s⁴), >= 0.
+
+    Returns
+    -------
+    R : ndarray, shape (4, 4)
+    """
+    dt = v.positive(dt, "dt", "a time step", "s")
+    accel_var = v.variance(accel_var, "accel_var")
+    G = np.vstack([0.5 * dt**2 * np.eye(2), dt * np.eye(2)])  # how an acceleration moves [p, v]
+    return accel_var * G @ G.T  # R = sigma_a^2 G G^T
+
+
+def simulate_target(seed: int = 0, sensor_std: float = SENSOR_STD) -> TargetRun:
+    r"""A target driving at constant speed along straight legs and turns (see ``LEGS``).
+
+    Truth: heading :math:`\theta_k = \theta_{k-1} + \omega_k \Delta t`, velocity
+    :math:`v_k = s\,[\cos\theta_k, \sin\theta_k]`, position :math:`p_k = p_{k-1} + v_k \Delta t`.
+    Readings: :math:`z_k = p_k + \sigma\, e_k` with standard-normal :math:`e_k`.
+    The path is the same for every seed; the seed draws the sensor noise.
+    Introduced in chapter 6.
+
+    Parameters
+    ----------
+    seed : int
+    sensor_std : float
+        The world's sensor noise per axis (m), > 0.
+
+    Returns
+    -------
+    TargetRun
+    """
+    sensor_std = v.positive(sensor_std, "sensor_std", "a standard deviation", "m")
+    omega = np.concatenate([np.full(round(duration / DT), rate) for duration, rate in LEGS])  # rad/s per step
+    theta = np.cumsum(omega * DT)  # heading (rad)
+    vel = SPEED * np.column_stack([np.cos(theta), np.sin(theta)])
+    pos = np.cumsum(vel * DT, axis=0)
+    e = np.random.default_rng(seed).standard_normal(pos.shape)
+    return TargetRun(
+        t=_read_only(DT * np.arange(omega.size)),
+        truth=_read_only(np.hstack([pos, vel])),
+        z=_read_only(pos + sensor_std * e),
+        turning=_read_only(omega != 0, dtype=bool),
+        dt=DT,
+        sensor_std=sensor_std,
+        seed=seed,
+    )
+
+
+def _start(z0, Q):
+    """The filter's first guess: the first reading, standing still, vague about velocity."""
+    mu0 = np.concatenate([z0, np.zeros(2)])
+    Sig0 = np.zeros((4, 4))
+    Sig0[:2, :2] = Q  # as sure of the position as of one reading
+    Sig0[2:, 2:] = START_SPEED_STD**2 * np.eye(2)
+    return mu0, Sig0
+
+
+def filter_target(run: TargetRun, R, Q) -> TargetEstimates:
+    r"""Track ``run`` with a constant-velocity Kalman filter that assumes noise ``R``, ``Q``.
+
+    Starts from the first reading with zero velocity (covariance ``Q`` for the
+    position, ``START_SPEED_STD**2`` for each velocity), then runs one
+    :func:`kf_step` for every later reading.  The gains those steps used are
+    recomputed afterwards from the recorded covariances, all steps at once.
+    Introduced in chapter 6.
+
+    Parameters
+    ----------
+    run : TargetRun
+    R : array_like, shape (4, 4)
+        The process noise the filter assumes (e.g. :func:`process_noise`).
+    Q : array_like, shape (2, 2)
+        The measurement noise the filter assumes.
+
+    Returns
+    -------
+    TargetEstimates
+    """
+    R = v.covariance(R, "R", 4)
+    Q = v.covariance(Q, "Q", 2)
+    F, H = constant_velocity(run.dt, dim=2)
+    T = run.t.size
+    mu_all, Sig_all, K_all = np.empty((T, 4)), np.empty((T, 4, 4)), np.zeros((T, 4, 2))
+    mu, Sig = _start(run.z[0], Q)
+    mu_all[0], Sig_all[0] = mu, Sig
+    for k in range(1, T):
+        mu, Sig = kf_step(mu, Sig, None, run.z[k], F, None, H, R, Q)
+        mu_all[k], Sig_all[k] = mu, Sig
+    # The gain of every update, all at once from the covariance before it (a stack of T - 1 matrices):
+    Sig_bar = F @ Sig_all[:-1] @ F.T + R  # Sig_bar = F Sig F^T + R
+    S = H @ Sig_bar @ H.T + Q  # innovation covariance S = H Sig_bar H^T + Q
+    K_all[1:] = Sig_bar @ H.T @ np.linalg.inv(S)  # K = Sig_bar H^T S^-1
+    return TargetEstimates(_read_only(mu_all), _read_only(Sig_all), _read_only(K_all), _read_only(R), _read_only(Q))
+
+
+# --------------------------------------------------------------- many tracks at once: the NEES
+@dataclass(frozen=True)
+class TrackBatch:
+    """Many constant-velocity targets; arrays are (N tracks, T steps, ...)."""
+
+    truth: np.ndarray  #: (N, T, 4) true states
+    z: np.ndarray  #: (N, T, 2) position readings
+    dt: float  #: time step (s)
+    accel_std: float  #: the world's random acceleration per axis (m/s²)
+    sensor_std: float  #: the world's sensor noise per axis (m)
+    seed: int
+
+    @property
+    def R(self) -> np.ndarray:
+        """The world's true process noise, (4, 4)."""
+        return process_noise(self.dt, self.accel_std**2)
+
+    @property
+    def Q(self) -> np.ndarray:
+        """The world's true measurement noise, (2, 2)."""
+        return self.sensor_std**2 * np.eye(2)
+
+
+def simulate_tracks(
+    n_tracks: int = 300,
+    n_steps: int = 100,
+    accel_std: float = 1.0,
+    sensor_std: float = SENSOR_STD,
+    dt: float = DT,
+    seed: int = 0,
+) -> TrackBatch:
+    r"""``n_tracks`` targets that follow the constant-velocity model exactly.
+
+    Each starts at the origin with a velocity drawn from :math:`N(0, 2^2 I)` m/s
+    (``START_SPEED_STD``), then :math:`x_k = F x_{k-1} + G a_k` with random
+    accelerations :math:`a_k \sim N(0, \sigma_a^2 I)` (so the true process noise is
+    :func:`process_noise`), and reads :math:`z_k = p_k + \sigma\, e_k`.
+    Introduced in chapter 6.
+
+    Returns
+    -------
+    TrackBatch
+    """
+    for name, n in (("n_tracks", n_tracks), ("n_steps", n_steps)):
+        if isinstance(n, bool) or not isinstance(n, (int, np.integer)) or n < 2:
+            raise ValueError(f"{name} must be a whole number >= 2, got {n!r}")
+    accel_std = v.non_negative(accel_std, "accel_std", "a standard deviation", "m/s²")
+    sensor_std = v.positive(sensor_std, "sensor_std", "a standard deviation", "m")
+    dt = v.positive(dt, "dt", "a time step", "s")
+    rng = np.random.default_rng(seed)
+    F, _ = constant_velocity(dt, dim=2)
+    G = np.vstack([0.5 * dt**2 * np.eye(2), dt * np.eye(2)])
+    x = np.zeros((n_tracks, 4))
+    x[:, 2:] = START_SPEED_STD * rng.standard_normal((n_tracks, 2))
+    truth = np.empty((n_tracks, n_steps, 4))
+    truth[:, 0] = x
+    for k in range(1, n_steps):
+        a = accel_std * rng.standard_normal((n_tracks, 2))
+        truth[:, k] = truth[:, k - 1] @ F.T + a @ G.T  # x_k = F x_{k-1} + G a_k
+    z = truth[:, :, :2] + sensor_std * rng.standard_normal((n_tracks, n_steps, 2))
+    return TrackBatch(_read_only(truth), _read_only(z), dt, accel_std, sensor_std, seed)
+
+
+def filter_tracks(batch: TrackBatch, R, Q) -> tuple[np.ndarray, np.ndarray]:
+    """Run one constant-velocity filter per track, all at once with :func:`kf_step_batch`.
+
+    Same start as :func:`filter_target`.  Introduced in chapter 6.
+
+    Returns
+    -------
+    (mu, Sig) : read-only arrays, shapes (N, T, 4), (N, T, 4, 4)
+    """
+    R = v.covariance(R, "R", 4)
+    Q = v.covariance(Q, "Q", 2)
+    F, H = constant_velocity(batch.dt, dim=2)
+    N, T, _ = batch.truth.shape
+    mu_all, Sig_all = np.empty((N, T, 4)), np.empty((N, T, 4, 4))
+    starts = [_start(z0, Q) for z0 in batch.z[:, 0]]  # each track's first guess, as in filter_target
+    mu = np.array([mu0 for mu0, _ in starts])
+    Sig = np.array([Sig0 for _, Sig0 in starts])
+    mu_all[:, 0], Sig_all[:, 0] = mu, Sig
+    for k in range(1, T):
+        mu, Sig = kf_step_batch(mu, Sig, None, batch.z[:, k], F, None, H, R, Q)
+        mu_all[:, k], Sig_all[:, k] = mu, Sig
+    return _read_only(mu_all), _read_only(Sig_all)
+
+
+def nees(truth, mu, Sig) -> np.ndarray:
+    r"""Normalised estimation error squared, :math:`\varepsilon = (x - \mu)^\top \Sigma^{-1} (x - \mu)`.
+
+    If the filter's :math:`\Sigma` is honest (its errors really are
+    :math:`N(0, \Sigma)`), :math:`\varepsilon` follows a chi-square distribution with
+    n degrees of freedom: on average it equals n.  Introduced in chapter 6.
+
+    Parameters
+    ----------
+    truth, mu : array_like, shape (..., n)
+    Sig : array_like, shape (..., n, n)
+
+    Returns
+    -------
+    ndarray, shape (...)
+    """
+    err = v.finite(truth, "truth") - v.finite(mu, "mu")  # x - mu
+    Sig = v.finite(Sig, "Sig")
+    if Sig.shape != err.shape + err.shape[-1:]:
+        raise ValueError(f"Sig must have shape {err.shape + err.shape[-1:]}, got {Sig.shape}")
+    return np.einsum("...i,...i->...", err, np.linalg.solve(Sig, err[..., None])[..., 0])
+
+
+def nees_band(n_runs: int, dof: int, level: float = 0.95) -> tuple[float, float]:
+    r"""The two-sided ``level`` band for the average NEES of ``n_runs`` honest filters.
+
+    The sum of ``n_runs`` independent :math:`\chi^2(\text{dof})` values is
+    :math:`\chi^2(\nu)` with :math:`\nu = n_\text{runs}\cdot\text{dof}`, and its
+    quantiles follow from the Wilson-Hilferty approximation (a cube root of a
+    chi-square is nearly normal):
+
+    .. math:: \chi^2_p(\nu) \approx \nu \left(1 - \frac{2}{9\nu} + z_p\sqrt{\frac{2}{9\nu}}\right)^3
+
+    with :math:`z_p` the standard-normal quantile.  Dividing by ``n_runs`` gives the
+    band for the average.  Introduced in chapter 6.
+
+    Returns
+    -------
+    (low, high) : floats
+    """
+    for name, n in (("n_runs", n_runs), ("dof", dof)):
+        if isinstance(n, bool) or not isinstance(n, (int, np.integer)) or n < 1:
+            raise ValueError(f"{name} must be a whole number >= 1, got {n!r}")
+    level = v.scalar(level, "level")
+    if not 0 < level < 1:
+        raise ValueError(f"level must lie between 0 and 1, got {level}")
+    nu = n_runs * dof
+    c = 2.0 / (9.0 * nu)
+    z = NormalDist().inv_cdf(0.5 + level / 2)  # 1.96 for 95 %
+    low = nu * max(1 - c - z * math.sqrt(c), 0.0) ** 3  # chi2 quantile at (1 - level) / 2 (never below 0)
+    high = nu * (1 - c + z * math.sqrt(c)) ** 3  # chi2 quantile at (1 + level) / 2
+    return low / n_runs, high / n_runs

@@ -1,0 +1,178 @@
+"""The 2-D tracker: every control does what the caption says, the two failure modes
+show on the run record, and every "Try this" of chapter 6 keeps its promise."""
+
+from __future__ import annotations
+
+import numpy as np
+import pytest
+
+import kfcourse as kf
+from kfcourse.filters.gaussian import ellipse_axes
+from kfcourse.sim.target import filter_target, process_noise
+
+TUNED = {"Q": 1.0, "R": 10.0}
+
+
+def make(seed=0):
+    return kf.demos.tracker(seed=seed)
+
+
+def lag_in_turns(model) -> float:
+    """Mean distance (m) of the estimate from the truth while the target turns."""
+    run, est = model.run, model.est
+    d = np.linalg.norm(est.mu[:, :2] - run.truth[:, :2], axis=1)
+    return float(d[run.turning].mean())
+
+
+def roughness(xy) -> float:
+    """Mean size of the step-to-step change of direction: |p_{k+1} - 2 p_k + p_{k-1}| (m)."""
+    return float(np.linalg.norm(np.diff(xy, 2, axis=0), axis=1).mean())
+
+
+def slider_to(demo, key, value):
+    demo.controls[key].value = value
+    assert demo.controls[key].value == pytest.approx(value)
+
+
+# --------------------------------------------------------------------------- controls
+def test_sliders_retune_the_filter_not_the_world():
+    demo = make()
+    m = demo.model
+    truth, z = m.run.truth, m.run.z
+    picture = bytes(demo.image.value)
+    slider_to(demo, "Q", 100.0)
+    assert m.q_var == pytest.approx(100.0)
+    np.testing.assert_allclose(m.est.Q, 100.0 * np.eye(2))
+    assert bytes(demo.image.value) != picture
+    slider_to(demo, "R", 0.1)
+    assert m.accel_var == pytest.approx(0.1)
+    np.testing.assert_allclose(m.est.R, process_noise(m.run.dt, 0.1))
+    assert m.run.truth is truth and m.run.z is z  # the same target, the same readings
+    expected = filter_target(m.run, process_noise(m.run.dt, 0.1), 100.0 * np.eye(2))
+    np.testing.assert_allclose(m.est.mu, expected.mu)
+
+
+def test_picture_shows_the_frame_estimate_ellipse_and_velocities():
+    demo = make()
+    m = demo.model
+    pings, trail, truth_vel, truth_dot, est_vel, est_dot, ring = demo.renderer.dynamic
+    for k in (0, 37, 120):
+        demo.controls["frame"].value = k
+        assert m.frame == k
+        assert len(pings.get_offsets()) == k + 1  # orange: the readings so far
+        np.testing.assert_allclose(pings.get_offsets()[-1], m.run.z[k])
+        np.testing.assert_allclose(trail.get_xydata()[-1], m.est.mu[k, :2])  # teal trail ends at the estimate
+        np.testing.assert_allclose(est_dot.get_xydata()[0], m.est.mu[k, :2])
+        np.testing.assert_allclose(truth_dot.get_xydata()[0], m.run.truth[k, :2])  # grey dot: the truth now
+        np.testing.assert_allclose(ring.get_center(), m.est.mu[k, :2])
+        w, h, _ = ellipse_axes(m.est.Sig[k, :2, :2], 2.0)  # the 2-sigma ellipse of the position block
+        assert (ring.get_width(), ring.get_height()) == pytest.approx((w, h))
+        v_est, v_true = m.velocities()
+        np.testing.assert_allclose(np.diff(est_vel.get_xydata(), axis=0)[0], v_est, atol=1e-9)  # 1 s of velocity
+        np.testing.assert_allclose(np.diff(truth_vel.get_xydata(), axis=0)[0], v_true, atol=1e-9)
+        text = demo.children[2].value  # the readout under the picture
+        assert f"estimated ({v_est[0]:+.2f}, {v_est[1]:+.2f})" in text
+        assert f"true ({v_true[0]:+.2f}, {v_true[1]:+.2f})" in text
+        assert m.regime() in text and f"K = {m.gain():.3f}" in text
+
+
+def test_first_frame_is_useful_and_seeded():
+    a, b, c = make(0), make(0), make(1)
+    assert a.model.frame > 20 and "balanced" in a.model.regime()
+    assert bytes(a.image.value) == bytes(b.image.value)
+    assert bytes(a.image.value) != bytes(c.image.value)  # another seed, other readings
+
+
+@pytest.mark.parametrize(("q", "r"), [(1e-3, 1e-3), (1e-3, 1e7), (1e4, 1e-3), (1e4, 1e7)])
+def test_slider_corners_stay_finite(q, r):
+    demo = make()
+    slider_to(demo, "Q", q)
+    slider_to(demo, "R", r)
+    m = demo.model
+    assert np.isfinite(m.est.mu).all() and np.isfinite(m.est.Sig).all() and np.isfinite(m.est.K).all()
+    for k in (0, 1, demo.controls["frame"].max):
+        demo.controls["frame"].value = k
+        assert "nan" not in demo.children[2].value.lower()
+
+
+# --------------------------------------------------------------------------- failure modes
+def test_lag_on_turns_grows_with_Q():
+    demo = make()
+    tuned = lag_in_turns(demo.model)
+    slider_to(demo, "Q", 1e4)
+    assert lag_in_turns(demo.model) > 4 * tuned
+    slider_to(demo, "Q", 1e2)
+    assert tuned < lag_in_turns(demo.model) < 4 * tuned  # on the way: it grows with Q
+
+
+def test_jitter_grows_with_R_and_K_goes_to_1():
+    demo = make()
+    m = demo.model
+    demo.controls["frame"].value = demo.controls["frame"].max
+    rough, K = [], []
+    for r in (10.0, 1e3, 1e5, 1e7):
+        slider_to(demo, "R", r)
+        rough.append(roughness(m.est.mu[:, :2]))
+        K.append(m.gain())
+    assert rough == sorted(rough) and K == sorted(K)
+    assert K[-1] > 0.99 and rough[-1] > 5 * rough[0]
+    assert rough[-1] == pytest.approx(roughness(m.run.z), rel=0.05)  # as rough as the readings
+
+
+# --------------------------------------------------------------------------- Try this (chapter 6)
+def test_try_run_at_the_start_settings_stays_balanced_and_beats_the_readings():
+    demo = make()
+    m = demo.model
+    demo.controls["frame"].value = 0
+    regimes = set()
+    while demo.step():
+        regimes.add(m.regime().split(":")[0])
+    assert regimes == {"balanced"}
+    est, raw = m.errors()
+    assert est < 0.6 * raw  # about half
+    assert est == pytest.approx(0.64, abs=0.01) and raw == pytest.approx(1.28, abs=0.01)
+
+
+def test_try_huge_Q_coasts_and_overshoots_the_turn():
+    demo = make()
+    m = demo.model
+    demo.controls["frame"].value = 90  # t = 9 s, in the U-turn
+    tuned_error = m.errors()[0]
+    assert tuned_error < 0.65
+    slider_to(demo, "Q", demo.controls["Q"].base ** demo.controls["Q"].max)
+    assert m.q_var == pytest.approx(1e4)
+    assert m.gain() < 0.05 and m.regime().startswith("K → 0: coasting")
+    assert m.errors()[0] > 3.0 > 4 * tuned_error  # past 3 m
+    late = lag_in_turns(m)
+    assert late > 4 * lag_in_turns(make().model)  # late in every turn
+    assert roughness(m.est.mu[:, :2]) < roughness(make().model.est.mu[:, :2]) / 4  # and smooth
+
+
+def test_try_huge_R_is_jittery():
+    demo = make()
+    m = demo.model
+    slider_to(demo, "Q", 1.0)
+    slider_to(demo, "R", demo.controls["R"].base ** demo.controls["R"].max)
+    assert m.accel_var == pytest.approx(1e7)
+    demo.controls["frame"].value = 90
+    assert round(m.gain(), 3) == 0.997 and m.regime().startswith("K → 1: jittery")
+    assert roughness(m.est.mu[:, :2]) > 0.95 * roughness(m.run.z)  # copies the orange dots
+    speed_error = np.abs(np.linalg.norm(m.est.mu[1:, 2:], axis=1) - np.linalg.norm(m.run.truth[1:, 2:], axis=1))
+    assert speed_error.max() > 20.0  # the velocity readout jumps by tens of m/s
+
+
+def test_try_tiny_R_coasts_too_and_only_the_ratio_matters():
+    demo = make()
+    m = demo.model
+    tuned = lag_in_turns(m)
+    slider_to(demo, "R", demo.controls["R"].base ** demo.controls["R"].min)
+    demo.controls["frame"].value = 90
+    assert m.regime().startswith("K → 0: coasting") and lag_in_turns(m) > 2 * tuned
+    gains = []
+    for q, r in [(1.0, 10.0), (10.0, 100.0), (0.1, 1.0)]:  # the same ratio R / Q
+        slider_to(demo, "Q", q)
+        slider_to(demo, "R", r)
+        gains.append(m.est.K[-1])
+    assert round(gains[0][0, 0], 3) == 0.222
+    np.testing.assert_allclose(gains[1], gains[0], rtol=1e-6)
+    np.testing.assert_allclose(gains[2], gains[0], rtol=1e-6)

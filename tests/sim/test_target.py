@@ -1,0 +1,141 @@
+"""The turning target and the constant-velocity tracks: reproducible, immutable, and the
+filter runs over them equal step-by-step kf_step; the NEES band is right."""
+
+from __future__ import annotations
+
+import dataclasses
+
+import numpy as np
+import pytest
+
+import kfcourse as kf
+from kfcourse.models import constant_velocity
+from kfcourse.sim.target import (
+    DT,
+    SPEED,
+    TargetEstimates,
+    TargetRun,
+    TrackBatch,
+    filter_target,
+    filter_tracks,
+    nees,
+    nees_band,
+    process_noise,
+    simulate_target,
+    simulate_tracks,
+)
+
+
+def arrays(record):
+    return {
+        f.name: getattr(record, f.name)
+        for f in dataclasses.fields(record)
+        if isinstance(getattr(record, f.name), np.ndarray)
+    }
+
+
+def test_target_is_seeded_and_immutable():
+    a, b, c = simulate_target(3), simulate_target(3), simulate_target(4)
+    for name, x in arrays(a).items():
+        assert np.array_equal(x, getattr(b, name)), name
+        assert not x.flags.writeable, name
+        with pytest.raises(ValueError):
+            x[...] = 0
+    assert np.array_equal(a.truth, c.truth)  # the same path for every seed
+    assert not np.allclose(a.z, c.z)  # other noise
+    with pytest.raises(dataclasses.FrozenInstanceError):
+        a.z = None  # type: ignore[misc]
+
+
+def test_target_turns_at_constant_speed_and_readings_have_the_stated_noise():
+    run = simulate_target(0)
+    assert isinstance(run, TargetRun)
+    T = run.t.size
+    assert run.truth.shape == (T, 4) and run.z.shape == (T, 2) and run.turning.shape == (T,)
+    assert np.allclose(np.linalg.norm(run.truth[:, 2:], axis=1), SPEED)
+    assert np.allclose(np.diff(run.truth[:, :2], axis=0), DT * run.truth[1:, 2:])  # p_k = p_{k-1} + v_k dt
+    heading = np.unwrap(np.arctan2(run.truth[:, 3], run.truth[:, 2]))
+    turned = np.abs(np.diff(heading)) > 1e-9
+    assert np.array_equal(turned, run.turning[1:])
+    assert 0.2 < run.turning.mean() < 0.6  # turns and straights both
+    err = run.z - run.truth[:, :2]
+    assert np.std(err) == pytest.approx(run.sensor_std, rel=0.15)
+
+
+def test_filter_target_is_kf_step_and_keeps_the_world():
+    run = simulate_target(1)
+    R, Q = process_noise(DT, 10.0), np.eye(2)
+    est = filter_target(run, R, Q)
+    assert isinstance(est, TargetEstimates)
+    assert all(not a.flags.writeable for a in arrays(est).values())
+    F, H = constant_velocity(DT, dim=2)
+    mu, Sig = est.mu[0], est.Sig[0]
+    assert np.array_equal(mu, [*run.z[0], 0.0, 0.0])
+    for k in range(1, 30):
+        mu, Sig = kf.kf_step(mu, Sig, None, run.z[k], F, None, H, R, Q)
+        np.testing.assert_allclose(est.mu[k], mu, rtol=1e-12, atol=1e-12)
+        np.testing.assert_allclose(est.Sig[k], Sig, rtol=1e-12, atol=1e-12)
+        Sig_bar = F @ est.Sig[k - 1] @ F.T + R
+        K = Sig_bar @ H.T @ np.linalg.inv(H @ Sig_bar @ H.T + Q)
+        np.testing.assert_allclose(est.K[k], K, rtol=1e-10)
+    z_before = run.z.copy()
+    filter_target(run, 100 * R, 0.01 * Q)
+    assert np.array_equal(run.z, z_before)
+
+
+def test_process_noise_is_a_random_acceleration():
+    dt, var = 0.5, 2.0
+    G = np.array([[dt**2 / 2, 0], [0, dt**2 / 2], [dt, 0], [0, dt]])
+    np.testing.assert_allclose(process_noise(dt, var), var * G @ G.T)
+    with pytest.raises(ValueError, match="accel_var"):
+        process_noise(dt, -1.0)
+
+
+def test_tracks_follow_the_constant_velocity_model():
+    batch = simulate_tracks(50, 30, accel_std=0.0, seed=2)
+    assert isinstance(batch, TrackBatch)
+    assert batch.truth.shape == (50, 30, 4) and batch.z.shape == (50, 30, 2)
+    F, _ = constant_velocity(batch.dt, dim=2)
+    np.testing.assert_allclose(batch.truth[:, 1:], batch.truth[:, :-1] @ F.T)  # no acceleration: exact
+    assert not batch.truth.flags.writeable
+    noisy = simulate_tracks(2000, 2, accel_std=1.5, seed=2)
+    step = noisy.truth[:, 1] - noisy.truth[:, 0] @ F.T  # G a: its covariance is R
+    np.testing.assert_allclose(np.cov(step.T), noisy.R, rtol=0.15, atol=1e-4)
+
+
+def test_filter_tracks_row_equals_filter_target_like_run():
+    batch = simulate_tracks(4, 20, seed=5)
+    mu, Sig = filter_tracks(batch, batch.R, batch.Q)
+    F, H = constant_velocity(batch.dt, dim=2)
+    m, S = mu[2, 0], Sig[2, 0]
+    for k in range(1, 20):
+        m, S = kf.kf_step(m, S, None, batch.z[2, k], F, None, H, batch.R, batch.Q)
+        np.testing.assert_allclose(mu[2, k], m, rtol=1e-10, atol=1e-12)
+        np.testing.assert_allclose(Sig[2, k], S, rtol=1e-10, atol=1e-12)
+
+
+def test_nees_by_hand():
+    Sig = np.diag([4.0, 1.0])
+    assert nees([2.0, 1.0], [0.0, 0.0], Sig) == pytest.approx(2.0**2 / 4 + 1.0)
+    with pytest.raises(ValueError, match="Sig"):
+        nees([1.0, 2.0], [0.0, 0.0], np.eye(3))
+
+
+def test_nees_band_matches_chi_square_quantiles():
+    # chi-square quantiles of 400 and 40 degrees of freedom (published tables)
+    low, high = nees_band(100, 4)
+    assert 100 * low == pytest.approx(346.48, abs=0.05) and 100 * high == pytest.approx(457.31, abs=0.05)
+    low, high = nees_band(10, 4)
+    assert 10 * low == pytest.approx(24.433, abs=0.02) and 10 * high == pytest.approx(59.342, abs=0.02)
+    low, high = nees_band(1, 1)
+    assert low >= 0.0 and high == pytest.approx(5.02, abs=0.3)  # crude for 1 d.o.f., never negative
+    with pytest.raises(ValueError, match="level"):
+        nees_band(10, 4, level=1.5)
+
+
+def test_honest_filter_nees_is_chi_square():
+    batch = simulate_tracks(2000, 15, seed=7)
+    mu, Sig = filter_tracks(batch, batch.R, batch.Q)
+    eps = nees(batch.truth, mu, Sig)[:, -1]  # one value per track at the last step
+    assert eps.mean() == pytest.approx(4.0, abs=0.25)  # chi2(4): mean 4, variance 8
+    assert eps.var() == pytest.approx(8.0, rel=0.2)
