@@ -32,7 +32,7 @@ SIG0 = np.diag([0.1, 0.1, 0.05])
 LAM = 0.0  # UKF spread: n + lam = 3
 
 N_LONG = 10**5
-N_SHORT = 3000
+N_SHORT = 1000
 RATIOS = [1e-8, 1e-4, 1.0, 1e4, 1e8]
 
 g = partial(kf.unicycle, dt=DT)
