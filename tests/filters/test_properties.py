@@ -12,6 +12,7 @@ import numpy as np
 import pytest
 from hypothesis import assume, example, given, settings
 from hypothesis import strategies as st
+from scipy import stats
 
 import kfcourse as kf
 from kfcourse.models import pose_residual, range_bearing_residual
@@ -237,17 +238,50 @@ def test_bayes_update_normalises_and_is_proportional(bel, data):
 
 
 # ---------------------------------------------------------------- long runs
-N_STEPS = 10**5
-CHECK_EVERY = 1000
+N_STEPS = 10**5  # the long run (R/Q = 1)
+N_STEPS_SHORT = 10**4  # the other noise ratios
 DT = 0.1  # s
+NEES_TAIL = 1e-4  # chance that a correct filter's mean NEES falls outside the window, each side
 
 
 def _min_eig_ok(Sig: np.ndarray) -> bool:
     return np.linalg.eigvalsh(Sig)[0] >= -1e-12 * np.abs(Sig).max()
 
 
-@pytest.mark.parametrize("ratio", [1e-8, 1e-4, 1.0, 1e4, 1e8], ids=lambda r: f"R/Q={r:g}")
-def test_covariance_stays_symmetric_psd_over_1e5_steps(ratio, n_steps=N_STEPS):
+def nees_window(n_samples: int, dim: int) -> tuple[float, float]:
+    """Where the mean of n_samples independent NEES values of a dim-state filter falls
+    with probability 1 - 2 NEES_TAIL: their sum is chi-square with n_samples * dim dof."""
+    dof = n_samples * dim
+    return stats.chi2.ppf(NEES_TAIL, dof) / n_samples, stats.chi2.ppf(1 - NEES_TAIL, dof) / n_samples
+
+
+def test_nees_window_rejects_a_covariance_2_5_times_off():
+    # a covariance 2.5x too small makes the mean NEES 2.5 n = 10; 2.5x too large makes it n / 2.5 = 1.6
+    for n_samples in (40, 100):
+        lo, hi = nees_window(n_samples, 4)
+        assert lo < 4.0 < hi
+        assert hi < 4.0 * 2.5 and lo > 4.0 / 2.5, (n_samples, lo, hi)
+
+
+def _textbook_kf_step(mu, Sig, z, F, H, R, Q):
+    """The lesson's equations in plain numpy, no symmetrisation, no Joseph form."""
+    mu_bar, Sig_bar = F @ mu, F @ Sig @ F.T + R
+    K = Sig_bar @ H.T @ np.linalg.inv(H @ Sig_bar @ H.T + Q)
+    return mu_bar + K @ (z - H @ mu_bar), (np.eye(mu.size) - K @ H) @ Sig_bar, Sig_bar
+
+
+def assert_close_in_correlation_units(Sig, ref, tol):
+    """|Sig_ij - ref_ij| <= tol sqrt(ref_ii ref_jj): fair to entries of very different scales."""
+    d = np.sqrt(np.diag(ref))
+    np.testing.assert_array_less(np.abs(Sig - ref), tol * np.outer(d, d) + 1e-300)
+
+
+@pytest.mark.parametrize(
+    ("ratio", "n_steps", "check_every"),
+    [(1.0, N_STEPS, 1000), *[(r, N_STEPS_SHORT, 250) for r in (1e-8, 1e-4, 1e4, 1e8)]],
+    ids=lambda p: f"{p:g}",
+)
+def test_covariance_stays_psd_and_consistent_over_long_runs(ratio, n_steps, check_every):
     F, H = kf.models.constant_velocity(DT, 2)
     Gam = np.vstack([0.5 * DT**2 * np.eye(2), DT * np.eye(2)])  # acceleration -> state
     s = math.sqrt(ratio)
@@ -266,17 +300,24 @@ def test_covariance_stays_symmetric_psd_over_1e5_steps(ratio, n_steps=N_STEPS):
     mu, Sig = np.zeros(4), 100.0 * np.eye(4)
     nees = []
     for t in range(n_steps):
+        prev = mu, Sig
         mu, Sig = kf.kf_step(mu, Sig, None, zs[t], F, None, H, R, Q)
-        if (t + 1) % CHECK_EVERY == 0:
-            assert np.array_equal(Sig, Sig.T), t
+        if (t + 1) % check_every == 0:
+            # what symmetrising cannot fake: the textbook step from the same belief gives the same
+            # numbers, the result is PSD, and the update took uncertainty away (Sig_bar - Sig is PSD)
+            mu_tb, Sig_tb, Sig_bar_tb = _textbook_kf_step(*prev, zs[t], F, H, R, Q)
+            assert_close_in_correlation_units(Sig, Sig_tb, 1e-6)
+            np.testing.assert_allclose(mu, mu_tb, rtol=0, atol=1e-6 * (1 + np.abs(mu_tb).max()))
             assert _min_eig_ok(Sig), (t, np.linalg.eigvalsh(Sig))
+            assert np.linalg.eigvalsh(Sig_bar_tb - Sig)[0] >= -1e-9 * np.abs(Sig_bar_tb).max(), t
+            assert np.array_equal(Sig, Sig.T), t
             e = mu - truths[t]
             nees.append(e @ np.linalg.solve(Sig, e))
-    assert np.array_equal(Sig, Sig.T)
-    assert _min_eig_ok(Sig)
     assert np.all(np.isfinite(mu))
-    # Σ still describes the error: normalised squared errors average ~ n = 4
-    assert 1.0 < np.mean(nees) < 10.0, np.mean(nees)
+    # Sig describes the error: the mean NEES is chi-square / N with 4 N dof (checks far enough apart to be
+    # independent); the window rejects a covariance 2.5x too small (mean 10) or too large (mean 1.6)
+    lo, hi = nees_window(len(nees), 4)
+    assert lo < np.mean(nees) < hi, (np.mean(nees), lo, hi)
 
 
 # ---------------------------------------------------------------- association
@@ -327,6 +368,28 @@ def test_mahalanobis_gate(pose, j, noise, spurious_range, spurious_bearing):
     # ... and it is the gate that rejects it: without one, the nearest landmark is taken
     idx_open, _ = _associate(z_bad, pose, gate=1e9)
     assert idx_open == int(np.argmin(dist_bad))
+
+
+@settings(max_examples=80, deadline=None)
+@given(
+    pose=st.tuples(reals(2, 8), reals(2, 8), reals(-math.pi, math.pi)).map(np.array),
+    j=st.integers(0, len(MAP) - 1),
+    direction=reals(-math.pi, math.pi),
+    gate=reals(0.3, 5.0),
+    side=st.sampled_from([1 - 1e-6, 1 + 1e-6]),
+)
+def test_associate_accepts_just_inside_and_rejects_just_outside_the_gate(pose, j, direction, gate, side):
+    z_hat = kf.range_bearing(pose, MAP[j])
+    H = kf.range_bearing_jacobian(pose, MAP[j])
+    S = H @ SIG_POSE @ H.T + Q_RB  # textbook innovation covariance
+    # an innovation of Mahalanobis length exactly side * gate: L e with |e| = side * gate, L L^T = S
+    nu = np.linalg.cholesky(S) @ (side * gate * np.array([math.cos(direction), math.sin(direction)]))
+    z = z_hat + nu
+    z[1] = math.remainder(z[1], 2 * math.pi)
+    idx, dist = _associate(z, pose, gate=gate)
+    assert dist[j] == pytest.approx(side * gate, rel=1e-9)
+    assume(np.delete(dist, j).min() > gate * 1.01)  # no other landmark competes (true in practice)
+    assert idx == (j if side < 1 else None)
 
 
 def test_mahalanobis_matches_closed_form_on_a_diagonal():

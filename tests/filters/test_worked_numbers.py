@@ -147,11 +147,14 @@ def test_ch3_kf_1d_step_reproduces_the_lesson_print():
 
 
 def test_ch3_kf_1d_step_defaults_are_the_lessons():
-    # a = b = c = 1, R = 0.2, Q = 0.1 by default
-    assert kf.kf_1d_step(2.0, 0.4, 1.0, 3.6) == pytest.approx(
-        kf.kf_1d_step(2.0, 0.4, 1.0, 3.6, 1.0, 1.0, 1.0, 0.2, 0.1)
-    )
-    assert r3(kf.kf_1d_step(2.0, 0.4, 1.0, 3.6)[0]) == 3.514
+    # a = b = c = 1, R = 0.2, Q = 0.1 by default, written out by hand:
+    # var_bar = 0.4 + 0.2 = 0.6, K = 0.6 / 0.7 = 6/7, mu = 3 + 6/7 * 0.6, var = (1 - 6/7) 0.6 = 0.6/7
+    mu, var = kf.kf_1d_step(2.0, 0.4, 1.0, 3.6)
+    assert mu == pytest.approx(3.0 + 6.0 / 7.0 * 0.6, rel=1e-14)
+    assert var == pytest.approx(0.6 / 7.0, rel=1e-14)
+    # a default that is not 1 would show: with a = 2 the prediction is 2 * 2 + 1 = 5, not 3
+    assert kf.kf_1d_cycle(2.0, 0.4, 1.0, None, a=2.0).mu_bar == pytest.approx(5.0, abs=1e-14)
+    assert r3(mu) == 3.514
 
 
 def test_ch3_cycle_two_continues_from_cycle_one():
@@ -328,11 +331,14 @@ def test_ch7_numeric_jacobian_agrees():
 
 
 def test_ch7_numeric_jacobian_catches_a_wrong_jacobian():
-    # The #1 cause of a diverging EKF: here the bearing row has its signs flipped.
-    wrong = H_WORKED.copy()
-    wrong[1, :2] *= -1
+    # The #1 cause of a diverging EKF: the bearing row with its signs flipped.  The check the lesson
+    # teaches must pass for range_bearing_jacobian and fail for the flipped one.
     J = kf.numeric_jacobian(lambda s: kf.range_bearing(s, LANDMARK), POSE)
-    assert not np.allclose(wrong, J)
+    H = kf.range_bearing_jacobian(POSE, LANDMARK)
+    np.testing.assert_allclose(H, J, atol=1e-7)
+    wrong = H.copy()
+    wrong[1, :2] *= -1
+    assert np.abs(wrong - J).max() > 0.2  # 2 * 0.16 off in the bearing row
 
 
 # --------------------------------------------------------------------- chapter 8
@@ -425,13 +431,13 @@ def test_ch9_unscented_transform_matches_unscented_1d():
 def test_ch9_ekf_linearisation():
     J = kf.numeric_jacobian(lambda x: np.asarray(x) ** 2, [2.0])
     assert J.shape == (1, 1)
-    assert J[0, 0] == pytest.approx(4.0, rel=1e-8)
-    assert J[0, 0] ** 2 * 1.0 == pytest.approx(16.0, rel=1e-7)  # EKF variance: J^2 var
-    # the same through ekf_predict: mean on the curve, variance on the tangent
-    mu, Sig = kf.ekf_predict(
-        [2.0], [[1.0]], None, lambda x, u: x**2, lambda x, u: kf.numeric_jacobian(square, x), [[0.0]]
-    )
-    assert (mu[0], Sig[0, 0]) == pytest.approx((4.0, 16.0), rel=1e-7)
+    assert J[0, 0] == pytest.approx(4.0, rel=1e-8)  # d(x^2)/dx = 2x = 4 at x = 2
+    # through ekf_predict: mean on the curve, variance on the tangent, J^2 var = 16 var
+    for var in (1.0, 0.25, 3.0):  # a variance other than 1 shows whether it is used
+        mu, Sig = kf.ekf_predict(
+            [2.0], [[var]], None, lambda x, u: x**2, lambda x, u: kf.numeric_jacobian(square, x), [[0.0]]
+        )
+        assert (mu[0], Sig[0, 0]) == pytest.approx((4.0, 16.0 * var), rel=1e-7)
 
 
 def test_ch9_monte_carlo_truth(rng):
@@ -444,8 +450,26 @@ def test_ch9_monte_carlo_truth(rng):
     # true moments: E[x^2] = mu^2 + s^2 = 5, Var[x^2] = 4 mu^2 s^2 + 2 s^4 = 18
     assert abs(y.mean() - 5.0) < Z_TOL * se_mean
     assert abs(var_hat - 18.0) < Z_TOL * se_var
-    # the UKF mean is right, the EKF mean is not; both variances miss the 2 s^4 term
+    # the UKF (lam = 0) mean is right, the EKF mean is not; the UKF variance 4 mu^2 s^2 = 16 and the
+    # EKF's (2 mu)^2 s^2 = 16 both miss the 2 s^4 term, by 2 = many standard errors
     ukf_mean, ukf_var = kf.unscented_1d(2.0, 1.0, square)
+    assert (ukf_mean, ukf_var) == pytest.approx((5.0, 16.0), rel=1e-12)
     assert abs(y.mean() - ukf_mean) < Z_TOL * se_mean
     assert abs(y.mean() - 4.0) > 20 * se_mean
     assert abs(var_hat - ukf_var) > 5 * se_var
+    # with lam = 2 (n + lam = 3) the sigma points catch the 2 s^4 term: 4 mu^2 s^2 + lam s^4 = 18
+    m3, v3 = kf.unscented_1d(2.0, 1.0, square, lam=2.0)
+    assert (m3, v3) == pytest.approx((5.0, 18.0), rel=1e-12)
+    assert abs(var_hat - v3) < Z_TOL * se_var
+
+
+def test_ch9_monte_carlo_truth_with_variance_not_one(rng):
+    # x ~ N(1, 0.25) through x^2: E = mu^2 + s2 = 1.25, Var = 4 mu^2 s2 + 2 s2^2 = 1 + 0.125
+    x = rng.normal(1.0, 0.5, N_SAMPLES)
+    y = x**2
+    se_var = math.sqrt((np.mean((y - y.mean()) ** 4) - y.var() ** 2) / y.size)
+    assert abs(y.var(ddof=1) - 1.125) < Z_TOL * se_var
+    m, s = kf.unscented_1d(1.0, 0.25, square, lam=2.0)
+    assert (m, s) == pytest.approx((1.25, 1.125), rel=1e-12)
+    mu, Sig = kf.ukf_predict([1.0], [[0.25]], None, lambda v, u: v**2, [[0.0]], 2.0)
+    assert (mu[0], Sig[0, 0]) == pytest.approx((1.25, 1.125), rel=1e-12)
