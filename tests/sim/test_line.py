@@ -38,7 +38,7 @@ def test_dead_reckoning_ignores_the_sensor():
 
 def test_dead_reckoning_error_spreads_like_sqrt_t():
     """Across seeds, the error at step t has standard deviation step_std * sqrt(t)."""
-    n_runs, n_steps, step_std = 400, 101, 0.05
+    n_runs, n_steps, step_std = 200, 101, 0.05
     err = np.array(
         [
             (lambda r: r.dead_reckoning - r.truth)(kf.sim.simulate_line(n_steps, step_std, 0.4, seed=s))
