@@ -1,4 +1,4 @@
-"""Chapter 0: a robot on a line, raw readings against the filtered estimate."""
+"""Chapter 0: a robot on a line: raw readings and dead reckoning against the filtered estimate."""
 
 from __future__ import annotations
 
@@ -17,12 +17,12 @@ SENSOR_MAX = 3.0  # m
 
 
 class RawVsFiltered:
-    """Model: one seeded run and the frame being shown."""
+    """Model: one seeded run and the frame being shown (the first frame shows the whole run)."""
 
     def __init__(self, seed: int, sensor_std: float = SENSOR_STD):
         self.seed = seed
         self.run = simulate_line(N_STEPS, STEP_STD, sensor_std, seed=seed)
-        self.frame = N_STEPS // 3
+        self.frame = N_STEPS - 1
 
     def set_sensor_std(self, sensor_std: float) -> None:
         self.run = simulate_line(N_STEPS, STEP_STD, sensor_std, seed=self.seed)
@@ -31,50 +31,54 @@ class RawVsFiltered:
         self.seed += 1
         self.run = simulate_line(N_STEPS, STEP_STD, self.run.sensor_std, seed=self.seed)
 
+    def errors(self) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+        """Distance from the truth at every step of the whole run (m): raw, dead reckoning, filtered."""
+        r = self.run
+        return np.abs(r.z - r.truth), np.abs(r.dead_reckoning - r.truth), np.abs(r.mu - r.truth)
+
     def rms_errors(self) -> tuple[float, float]:
         """RMS error up to the current frame of the raw readings and the filter."""
+        raw, _, filt = self.rms_errors_all()
+        return raw, filt
+
+    def rms_errors_all(self) -> tuple[float, float, float]:
+        """RMS error up to the current frame: raw readings, dead reckoning, filter."""
         k = self.frame + 1
-        r = self.run
-        raw = np.sqrt(np.mean((r.z[:k] - r.truth[:k]) ** 2))
-        filt = np.sqrt(np.mean((r.mu[:k] - r.truth[:k]) ** 2))
-        return float(raw), float(filt)
+        return tuple(float(np.sqrt(np.mean(e[:k] ** 2))) for e in self.errors())
 
 
 def raw_vs_filtered(seed: int = 0) -> Demo:
-    """Demo "raw vs filtered" (chapter 0): Run animates time, the sensor-noise
-    slider makes the raw trace explode while the filter holds, "New noise"
-    draws a fresh run.
+    """Demo "raw vs filtered" (chapter 0): the first frame shows a whole run and each
+    estimate's distance from the truth; Run replays time, the sensor-noise slider makes
+    the raw trace explode while the filter holds, "New noise" draws a fresh run.
 
     Returns
     -------
     Demo (an ipywidgets.VBox)
     """
     model = RawVsFiltered(seed)
-    fig, ax = new_figure(8.0, 3.6)
+    fig, (ax, ax_err) = new_figure(8.0, 4.6, nrows=2, sharex=True, gridspec_kw={"height_ratios": [3, 2]})
     r = model.run
     span = r.truth.max() - r.truth.min()
     ax.set_xlim(0, N_STEPS - 1)
     ax.set_ylim(r.truth.min() - 0.25 * span, r.truth.max() + 0.25 * span)
-    ax.set_xlabel("time step")
-    ax.set_ylabel("position along the line (m)")
+    ax.set_ylabel("position (m)")
     (truth,) = ax.plot([], [], color=palette.TRUTH, lw=5, alpha=0.55, label="truth (unknown)")
     pings = ax.scatter([], [], s=14, color=palette.MEASUREMENT, alpha=0.75, label="sensor pings", zorder=3)
     (raw,) = ax.plot([], [], color=palette.MEASUREMENT, lw=1.0, alpha=0.8, label="raw: trust each ping")
+    (dr,) = ax.plot([], [], "--", color=palette.PREDICTION, lw=1.6, label="dead reckoning")
     band = ax.fill_between([], [], [], color=palette.ESTIMATE, alpha=0.18, lw=0)
     (est,) = ax.plot([], [], color=palette.ESTIMATE, lw=2.4, label="filtered (Kalman)")
     (robot,) = ax.plot([], [], "o", color=palette.ESTIMATE, ms=8, zorder=4)
-    ax.legend(loc="lower left", bbox_to_anchor=(0.0, 1.0), ncols=4, fontsize=9)
-    readout = ax.text(
-        0.99,
-        0.03,
-        "",
-        transform=ax.transAxes,
-        ha="right",
-        va="bottom",
-        fontsize=10,
-        bbox={"facecolor": "white", "alpha": 0.85, "edgecolor": "none"},
-    )
-    renderer = FigureRenderer(fig, [truth, pings, raw, band, est, robot, readout])
+    ax.legend(loc="lower left", bbox_to_anchor=(0.0, 1.0), ncols=3, fontsize=9)
+    ax_err.set_xlabel("time step")
+    ax_err.set_ylabel("distance from truth (m)")
+    (err_raw,) = ax_err.plot([], [], color=palette.MEASUREMENT, lw=0.9, alpha=0.8)
+    (err_dr,) = ax_err.plot([], [], "--", color=palette.PREDICTION, lw=1.6)
+    (err_est,) = ax_err.plot([], [], color=palette.ESTIMATE, lw=2.0)
+    readout = ax_err.text(0.0, 1.03, "", transform=ax_err.transAxes, ha="left", va="bottom", fontsize=9.5)
+    dynamic = [truth, pings, raw, dr, band, est, robot, err_raw, err_dr, err_est, readout]
+    renderer = FigureRenderer(fig, dynamic)
 
     def draw() -> None:
         run, k = model.run, model.frame + 1
@@ -82,19 +86,32 @@ def raw_vs_filtered(seed: int = 0) -> Demo:
         truth.set_data(t, run.truth[:k])
         pings.set_offsets(np.column_stack([t, run.z[:k]]))
         raw.set_data(t, run.z[:k])
+        dr.set_data(t, run.dead_reckoning[:k])
         sd = np.sqrt(run.var[:k])
         lo, hi = run.mu[:k] - sd, run.mu[:k] + sd
         band.set_verts([np.concatenate([np.column_stack([t, lo]), np.column_stack([t[::-1], hi[::-1]])])])
         est.set_data(t, run.mu[:k])
         robot.set_data([t[-1]], [run.mu[k - 1]])
-        e_raw, e_filt = model.rms_errors()
-        readout.set_text(f"RMS error so far: raw {100 * e_raw:.0f} cm   filtered {100 * e_filt:.0f} cm")
+        e_raw, e_dr, e_est = model.errors()
+        top = 0.5 * np.ceil(max(2.5 * run.sensor_std, 1.2 * e_dr.max(), 1.2 * e_est.max()) / 0.5)  # whole run
+        if ax_err.get_ylim()[1] != top:
+            ax_err.set_ylim(0, top)
+            renderer.invalidate()
+        err_raw.set_data(t, e_raw[:k])
+        err_dr.set_data(t, e_dr[:k])
+        err_est.set_data(t, e_est[:k])
+        rms_raw, rms_dr, rms_est = model.rms_errors_all()
+        readout.set_text(
+            f"RMS error so far: raw {100 * rms_raw:.0f} cm   dead reckoning {100 * rms_dr:.0f} cm   "
+            f"filtered {100 * rms_est:.0f} cm"
+        )
 
     caption = (
         "<b>Raw vs filtered.</b> Grey: the true position (the robot never sees it). "
         "Orange dots: noisy sensor pings; orange line: trusting each ping. "
-        "Teal: the Kalman filter's estimate (band = ±1σ). "
-        "Press <i>Run</i> to run time, drag <i>sensor noise</i>, or draw <i>New noise</i>."
+        "Purple dashes: dead reckoning, counting the commanded moves only. "
+        "Teal: the Kalman filter's estimate (band = ±1σ). Lower panel: how far each one is from the truth. "
+        "Press <i>Run</i> to replay time, drag <i>sensor noise</i>, or draw <i>New noise</i>."
     )
     return Demo(
         name="raw-vs-filtered",

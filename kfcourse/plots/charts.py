@@ -28,8 +28,20 @@ def drift_chart(n, formula_sigma, empirical_sigma, bias_error=None):
         Error of a constant scale bias (m), drawn for comparison.
     """
     fig, ax = new_figure(7.0, 3.2)
-    ax.plot(n, 100 * np.asarray(formula_sigma), color=palette.PREDICTION, lw=2.2, label="formula  0.02·√n")
-    ax.plot(n, 100 * np.asarray(empirical_sigma), "o", color=palette.MEASUREMENT, ms=5, label="Monte Carlo")
+    # Colours by role: the formula is a plain line in ink; the simulated robots are "truth", faint grey
+    # dots; prediction purple and measurement orange mean other things in this course.
+    ax.plot(n, 100 * np.asarray(formula_sigma), color=palette.INK, lw=1.8, label="formula  0.02·√n", zorder=2)
+    ax.plot(
+        n,
+        100 * np.asarray(empirical_sigma),
+        "o",
+        color=palette.TRUTH,
+        mec=palette.INK,
+        mew=0.6,
+        ms=6,
+        label="simulated robots (Monte Carlo)",
+        zorder=3,
+    )
     if bias_error is not None:
         ax.plot(n, 100 * np.asarray(bias_error), "--", color=palette.INK, lw=1.2, label="1 % scale bias")
         ax.set_ylim(0, 100 * float(np.max(formula_sigma)) * 2.5)

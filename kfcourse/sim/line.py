@@ -29,6 +29,7 @@ class LineRun:
     step_std: float
     sensor_std: float
     seed: int
+    dead_reckoning: np.ndarray  #: the commands summed from the known start, no sensor (m); drifts away from the truth
 
 
 def simulate_line(
@@ -40,7 +41,9 @@ def simulate_line(
     and a command :math:`u_t = v \sin(2\pi t / T)`: the robot drives out along
     the line and back again.  Sensor:
     :math:`z_t = x_t + \sigma_{sensor} e_t`.  The filter runs :func:`kf_1d_step`
-    with ``R = step_std**2`` and ``Q = sensor_std**2``.
+    with ``R = step_std**2`` and ``Q = sensor_std**2``.  Dead reckoning counts the
+    commands only, :math:`\hat x_t = \sum_{k \le t} u_k`, so its error is the sum of the
+    disturbances and spreads like :math:`\sigma_{step}\sqrt{t}` (chapter 0's drift).
 
     The standard-normal draws depend only on ``seed`` and ``n_steps``, so changing
     ``sensor_std`` rescales the same noise: the picture changes smoothly.
@@ -80,6 +83,16 @@ def simulate_line(
     for k in range(1, n_steps):
         m, s2 = kf_1d_cycle(m, s2, u[k], z[k], R=step_std**2, Q=sensor_std**2)[4:]
         mu[k], var[k] = m, s2
+    dead_reckoning = np.cumsum(u)  # m: x_t = x_{t-1} + u_t from the known start, never corrected
     return LineRun(
-        _frozen(t), _frozen(u), _frozen(truth), _frozen(z), _frozen(mu), _frozen(var), step_std, sensor_std, seed
+        _frozen(t),
+        _frozen(u),
+        _frozen(truth),
+        _frozen(z),
+        _frozen(mu),
+        _frozen(var),
+        step_std,
+        sensor_std,
+        seed,
+        _frozen(dead_reckoning),
     )

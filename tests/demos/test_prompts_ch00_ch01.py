@@ -1,0 +1,195 @@
+"""Every "Try this" prompt of chapters 0 and 1, driven through the demo's controls as the
+prompt says, asserting what the prose promises."""
+
+from __future__ import annotations
+
+import numpy as np
+import pytest
+
+import kfcourse as kf
+
+SEEDS = range(20)
+
+
+def rms(a) -> float:
+    return float(np.sqrt(np.mean(np.square(a))))
+
+
+# --------------------------------------------------------------------- chapter 0: raw vs filtered
+
+
+def test_ch0_first_frame_shows_the_whole_run_and_the_filter_beating_both_witnesses():
+    """At the default noise, without touching anything: the whole run is drawn, dead reckoning has
+    drifted, and the filtered error stays below the raw and dead-reckoning errors."""
+    demo = kf.demos.raw_vs_filtered(seed=0)
+    m = demo.model
+    assert m.frame == demo.controls["frame"].max  # the first frame is the whole run
+    raw, dead, filt = m.rms_errors_all()
+    assert filt < 0.5 * raw and filt < 0.6 * dead
+    e_raw, e_dead, e_filt = m.errors()
+    n = e_dead.size
+    assert rms(e_dead[: n // 10]) < 0.5 * rms(e_dead[-n // 3 :])  # dead reckoning drifts away
+    ax_err = demo.renderer.fig.axes[1]
+    drawn = [line.get_ydata() for line in ax_err.get_lines()]
+    assert any(np.allclose(y, e_filt) for y in drawn)  # the error panel shows the filter's error ...
+    assert any(np.allclose(y, e_raw) for y in drawn)  # ... the raw error ...
+    assert any(np.allclose(y, e_dead) for y in drawn)  # ... and dead reckoning's
+
+
+def test_ch0_run_replays_time_from_the_start():
+    """Press Run (or drag the step slider): time flows from the first step."""
+    demo = kf.demos.raw_vs_filtered(seed=0)
+    frame = demo.controls["frame"]
+    first = bytes(demo.image.value)
+    frame.value = 0
+    assert demo.model.frame == 0 and bytes(demo.image.value) != first
+    assert demo.step() and demo.model.frame == 1
+
+
+def test_ch0_sensor_noise_up_raw_explodes_filter_holds():
+    """Drag sensor noise up towards 3 m: the raw RMS grows with it, the filtered RMS stays well
+    below it (about 3.2 m against 0.66 m at 3 m), and dead reckoning does not change."""
+    demo = kf.demos.raw_vs_filtered(seed=0)
+    noise = demo.controls["sensor_noise"]
+    raws, filts, deads = [], [], []
+    for value in (0.4, 1.0, 2.0, noise.max):
+        noise.value = value
+        raw, dead, filt = demo.model.rms_errors_all()
+        raws.append(raw)
+        filts.append(filt)
+        deads.append(dead)
+        assert filt < raw
+    assert np.all(np.diff(raws) > 0)  # the raw trace gets worse with every step of the slider
+    assert noise.max == 3.0
+    assert round(raws[-1], 1) == 3.2 and round(filts[-1], 2) == 0.66
+    assert filts[-1] < raws[-1] / 4
+    assert deads == pytest.approx([deads[0]] * 4)  # dead reckoning never looks at the sensor
+
+
+def test_ch0_sensor_noise_down_filter_follows_the_sensor():
+    """Drag sensor noise down to 0.05 m: the sensor is excellent and the filter follows it closely."""
+    demo = kf.demos.raw_vs_filtered(seed=0)
+    demo.controls["sensor_noise"].value = 0.05
+    run = demo.model.run
+    raw, _, filt = demo.model.rms_errors_all()
+    assert rms(run.mu - run.z) < 0.06  # within about one sensor sigma of every reading
+    assert filt < raw  # and still a little better than the readings themselves
+    demo.controls["sensor_noise"].value = 0.4
+    assert rms(demo.model.run.mu - demo.model.run.z) > 0.2  # at the default it does not just copy them
+
+
+def test_ch0_new_noise_draws_a_fresh_run():
+    demo = kf.demos.raw_vs_filtered(seed=0)
+    before = demo.model.run
+    picture = bytes(demo.image.value)
+    demo.controls["new_noise"].click()
+    after = demo.model.run
+    assert not np.allclose(after.z, before.z)
+    assert not np.allclose(after.truth, before.truth)
+    assert after.sensor_std == before.sensor_std
+    assert bytes(demo.image.value) != picture
+
+
+# --------------------------------------------------------------------- chapter 1: histogram hallway
+
+
+def alternate(demo, cycles: int) -> None:
+    for _ in range(cycles):
+        demo.controls["predict"].click()
+        demo.controls["update"].click()
+
+
+def test_ch1_alternating_ten_times_settles_on_the_true_cell():
+    """Alternate Predict and Update about ten times: the tallest bar ends on the true cell for at
+    least 18 of seeds 0..19."""
+    found = 0
+    for seed in SEEDS:
+        demo = kf.demos.hallway(seed=seed)
+        alternate(demo, 10)
+        found += int(demo.model.belief.argmax() == demo.model.true_cell)
+    assert found >= 18
+
+
+def test_ch1_demo_replays_the_chapters_simulation():
+    """The demo and kf.sim.hallway.simulate_hallway (which the chapter's checked cell counts) agree."""
+    demo = kf.demos.hallway(seed=3)
+    alternate(demo, 10)
+    run = kf.sim.hallway.simulate_hallway(10, seed=3)
+    assert demo.model.true_cell == run.true_cell[-1]
+    np.testing.assert_allclose(demo.model.belief, run.belief[-1])
+
+
+def test_ch1_first_look_leaves_several_equal_peaks():
+    """The demo starts after one look, which leaves several equally tall bars."""
+    for seed in SEEDS:
+        belief = kf.demos.hallway(seed=seed).model.belief
+        assert np.isclose(belief, belief.max()).sum() >= 2
+
+
+def test_ch1_predict_without_update_shifts_and_blurs():
+    demo = kf.demos.hallway(seed=0)
+    alternate(demo, 10)
+    m = demo.model
+    for _ in range(4):
+        before = m.belief.copy()
+        demo.controls["predict"].click()
+        assert m.belief.max() < before.max()  # blurred
+        assert m.belief.argmax() == (before.argmax() + 1) % before.size  # shifted one cell right
+
+
+def test_ch1_coin_flip_sensor_changes_nothing():
+    demo = kf.demos.hallway(seed=0)
+    alternate(demo, 3)
+    demo.controls["sensor_reliability"].value = 0.5
+    before = demo.model.belief.copy()
+    demo.controls["update"].click()
+    np.testing.assert_allclose(demo.model.likelihood, demo.model.likelihood[0])  # flat
+    np.testing.assert_allclose(demo.model.belief, before)
+
+
+def test_ch1_perfect_motion_only_shifts():
+    demo = kf.demos.hallway(seed=0)
+    alternate(demo, 2)
+    demo.controls["motion_reliability"].value = 1.0
+    before = demo.model.belief.copy()
+    demo.controls["predict"].click()
+    np.testing.assert_allclose(demo.model.belief, np.roll(before, 1))
+
+
+def test_ch1_loop_carries_the_last_cell_on_to_cell_0():
+    demo = kf.demos.hallway(seed=0)
+    assert demo.controls["boundary"].value == "wrap"
+    before = demo.model.belief.copy()
+    demo.controls["predict"].click()
+    p = demo.model.motion_reliability
+    assert demo.model.belief[0] == pytest.approx(p * before[-1] + (1 - p) * before[0])
+
+
+def test_ch1_walls_pile_the_belief_into_the_last_cell():
+    """Switch ends to wall, Reset, press Predict ten times without an Update: the belief piles up
+    in the last cell; on the loop the same presses do not pile it anywhere."""
+    demo = kf.demos.hallway(seed=0)
+    demo.controls["boundary"].value = "wall"
+    demo.controls["reset"].click()
+    for _ in range(10):
+        demo.controls["predict"].click()
+    belief = demo.model.belief
+    assert belief.argmax() == belief.size - 1 and belief[-1] > 0.5
+    loop = kf.demos.hallway(seed=0)
+    for _ in range(10):
+        loop.controls["predict"].click()
+    assert loop.model.belief[-1] < 0.5
+
+
+def test_ch1_controls_change_the_picture_and_reset_returns_to_the_first_frame():
+    demo = kf.demos.hallway(seed=0)
+    first = bytes(demo.image.value)
+    for key, value in (("motion_reliability", 0.6), ("sensor_reliability", 0.7), ("boundary", "wall")):
+        before = bytes(demo.image.value)
+        demo.controls[key].value = value
+        assert bytes(demo.image.value) != before, key
+    alternate(demo, 2)
+    for key, value in (("motion_reliability", 0.9), ("sensor_reliability", 0.95), ("boundary", "wrap")):
+        demo.controls[key].value = value
+    demo.controls["reset"].click()
+    assert bytes(demo.image.value) == first
