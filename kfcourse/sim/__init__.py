@@ -2,7 +2,16 @@
 time), or is a pure function of its inputs and a seeded generator."""
 
 from .drift import bias_drift, drift_sigma, monte_carlo_drift
-from .hallway import door_likelihood, motion_kernel, move, read_door
+from .hallway import (
+    HallwayRun,
+    door_likelihood,
+    hallway_doors,
+    motion_kernel,
+    move,
+    read_door,
+    simulate_hallway,
+    start_cell,
+)
 from .line import LineRun, simulate_line
 from .robot import DEFAULT_LANDMARKS, RobotRun, loop_controls, simulate_robot
 from .target import (
@@ -21,6 +30,7 @@ from .walk import simulate_walk
 
 __all__ = [
     "DEFAULT_LANDMARKS",
+    "HallwayRun",
     "LineRun",
     "RobotRun",
     "TargetEstimates",
@@ -31,6 +41,7 @@ __all__ = [
     "drift_sigma",
     "filter_target",
     "filter_tracks",
+    "hallway_doors",
     "loop_controls",
     "monte_carlo_drift",
     "motion_kernel",
@@ -39,9 +50,11 @@ __all__ = [
     "nees_band",
     "process_noise",
     "read_door",
+    "simulate_hallway",
     "simulate_line",
     "simulate_robot",
     "simulate_target",
     "simulate_tracks",
     "simulate_walk",
+    "start_cell",
 ]

@@ -145,7 +145,7 @@ def test_hallway_predict_update_reset():
     assert m.belief.sum() == pytest.approx(1.0)
     assert not np.allclose(m.belief, first)
     kernel = kf.sim.motion_kernel(m.motion_reliability)
-    assert m.belief == pytest.approx(kf.bayes_predict(first, kernel, "wall"))
+    assert m.belief == pytest.approx(kf.bayes_predict(first, kernel, m.boundary))
     demo.controls["update"].click()
     assert m.phase == "updated"
     assert m.belief.sum() == pytest.approx(1.0)
