@@ -8,7 +8,7 @@ import numpy as np
 from ..filters.kalman import kf_1d_gain, kf_1d_predict, kf_1d_update
 from ..plots import palette
 from ..plots.artists import gaussian_curve, update_gaussian_curve
-from ..plots.style import FigureRenderer, new_figure, nice_limit
+from ..plots.style import FigureRenderer, fixed_width_ticks, new_figure, nice_limit
 from ._base import Demo, button, slider
 
 MU0, VAR0 = 2.0, 0.40  # the lesson's prior at time step 0: m, m^2
@@ -130,6 +130,7 @@ def step_through(seed: int = 0) -> Demo:
     fig, ax = new_figure(8.0, 3.4)
     ax.set_xlabel("position x (m)")
     ax.set_ylabel("density")
+    fixed_width_ticks(ax.yaxis)  # the layout is found once: keep the density labels one width
     x = np.linspace(0.0, 10.0, 600)
     before = gaussian_curve(ax, x, MU0, VAR0, palette.ESTIMATE, "belief before this step", fill=False)
     before[0].set_linestyle("--")

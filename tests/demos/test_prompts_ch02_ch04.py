@@ -319,3 +319,22 @@ def test_ch04_cycle_1_again(trust_demo):
     assert var_f == pytest.approx(0.086, abs=0.002)
     assert peak_x(demo, palette.ESTIMATE) == pytest.approx(3.514, abs=0.02)
     assert "μ = 3.51" in trust_readout(demo)
+
+
+@pytest.mark.parametrize("var_pred", [0.01, 0.1, 1.0, 10.0])
+@pytest.mark.parametrize("var_meas", [0.01, 0.3, 10.0])
+def test_ch04_the_density_label_is_never_cut_off(trust_demo, var_pred, var_meas):
+    """The layout is found once; whatever the y tick labels become, the "density" label and the
+    tick labels stay inside the picture."""
+    demo = trust_demo
+    demo.controls["var_pred"].value = var_pred
+    demo.controls["var_meas"].value = var_meas
+    demo.renderer.invalidate()
+    demo.renderer.png()  # a full redraw places the axis label next to the current tick labels
+    fig = demo.renderer.fig
+    renderer = fig.canvas.get_renderer()
+    ax = fig.axes[0]
+    for text in [ax.yaxis.label, *ax.get_yticklabels()]:
+        if text.get_visible() and text.get_text():
+            box = text.get_window_extent(renderer)
+            assert box.x0 >= 0 and box.x1 <= fig.bbox.x1, f"{text.get_text()!r} at {box}"

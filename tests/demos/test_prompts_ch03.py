@@ -155,3 +155,35 @@ def test_reset_goes_back_to_the_prior():
     press(d, "predict", "update", "predict", "reset")
     assert (d.model.mu, d.model.var, d.model.rows, d.model.phase) == (2.0, 0.40, [], "prior")
     assert bytes(d.image.value) == first
+
+
+def assert_density_label_not_clipped(d, what: str) -> None:
+    """The y axis label and tick labels, as a full redraw places them with the layout found
+    once, lie inside the picture."""
+    d.renderer.invalidate()
+    d.renderer.png()
+    fig = d.renderer.fig
+    renderer = fig.canvas.get_renderer()
+    (ax,) = fig.axes
+    for text in [ax.yaxis.label, *ax.get_yticklabels()]:
+        if text.get_visible() and text.get_text():
+            box = text.get_window_extent(renderer)
+            assert box.x0 >= 0 and box.x1 <= fig.bbox.x1, f"after {what}: {text.get_text()!r} at {box}"
+
+
+def test_the_density_label_is_never_cut_off():
+    """Tall and flat curves change the y tick labels ("0.5", "1.75", "12.5", "0.0125"); the layout is
+    found once, so none of them may push the "density" label off the picture."""
+    d = demo()
+    assert_density_label_not_clipped(d, "start")
+    for keys in (("predict",), ("update",), ("predict", "update"), ("reset",)):
+        press(d, *keys)
+        assert_density_label_not_clipped(d, " ".join(keys))
+    d.controls["Q"].value = 0.001  # a razor-sharp sensor: tall curves
+    press(d, "predict", "update")
+    assert_density_label_not_clipped(d, "Q = 0.001")
+    d.controls["R"].value = 0.001
+    assert_density_label_not_clipped(d, "R = Q = 0.001")
+    d.controls["R"].value, d.controls["Q"].value = 10.0, 10.0
+    press(d, *["predict"] * 30)  # a very flat prediction: small densities
+    assert_density_label_not_clipped(d, "30 predicts at R = 10")
