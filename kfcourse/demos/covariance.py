@@ -101,8 +101,9 @@ def covariance_ellipse(seed: int = 0) -> Demo:
 
     caption = (
         "<b>Covariance ellipse.</b> Dots: 1000 samples of N(0, Σ); teal: the 1σ, 2σ, 3σ contours; dashed: the box "
-        "±σx, ±σy that the 1σ contour fits in (its shadow on the axes). σx² and σy² stretch the ellipse, ρ tilts it; the table compares the share of samples inside "
-        "each contour with theory (1 − e<sup>−k²/2</sup> in 2-D)."
+        "±σx, ±σy that the 1σ contour fits in (its shadow on the axes). σx² and σy² stretch the ellipse, "
+        "ρ tilts it; the table compares the share of samples inside each contour with theory "
+        "(1 − e<sup>−k²/2</sup> in 2-D)."
     )
     return Demo(
         name="covariance-ellipse",
