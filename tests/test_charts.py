@@ -75,3 +75,23 @@ def test_ellipse_shadow_chart_axes_from_eigenvalues_shadow_from_diagonal(Sig, ns
 def test_ellipse_shadow_chart_rejects_bad_input(Sig, nsig, name):
     with pytest.raises(ValueError, match=name):
         kf.plots.charts.ellipse_shadow_chart(Sig, nsig)
+
+
+def test_samples_chart_draws_samples_in_a_neutral_colour():
+    """Samples are neither a prediction nor a measurement: no role colour for the histogram."""
+    samples = np.random.default_rng(0).normal(4.0, np.sqrt(2.0), 5000)
+    (ax,) = kf.plots.charts.samples_chart(samples, 4.0, 2.0).axes
+    colours = {to_hex(bar.get_facecolor()) for bar in ax.patches}
+    assert colours == {palette.INK}
+    (curve,) = ax.get_lines()
+    assert curve.get_color() == palette.ESTIMATE
+
+
+def test_convergence_chart_draws_the_steady_state_in_a_neutral_colour():
+    """The steady-state lines are a limit, not a prediction: ink, dashed, at the given values."""
+    fig = kf.plots.charts.convergence_chart([0.9, 0.5, 0.4], [0.2, 0.12, 0.1], 0.328, 0.082)
+    for ax, level in zip(fig.axes, (0.328, 0.082), strict=True):
+        (steady,) = [line for line in ax.get_lines() if line.get_linestyle() == "--"]
+        assert steady.get_color() == palette.INK
+        assert steady.get_ydata()[0] == pytest.approx(level)
+        assert palette.PREDICTION not in {line.get_color() for line in ax.get_lines()}

@@ -13,7 +13,7 @@ from ..plots.style import FigureRenderer, new_figure
 from ._base import Demo, slider
 
 N_SAMPLES = 1000
-LIMIT = 7.0  # half-width of the view
+LIMIT = 7.5  # half-width of the view, both ways: the 3σ contour (at most ±6) and its label fit at every slider position
 SIGMAS = (1, 2, 3)
 
 
@@ -60,7 +60,7 @@ def covariance_ellipse(seed: int = 0) -> Demo:
     fig, (ax, ax_text) = new_figure(7.6, 4.4, ncols=2, gridspec_kw={"width_ratios": [3, 1.1]})
     ax_text.set_axis_off()
     ax.set_xlim(-LIMIT, LIMIT)
-    ax.set_ylim(-LIMIT * 0.75, LIMIT * 0.75)
+    ax.set_ylim(-LIMIT, LIMIT)
     ax.set_aspect("equal")
     ax.set_xlabel("x")
     ax.set_ylabel("y")
@@ -70,11 +70,13 @@ def covariance_ellipse(seed: int = 0) -> Demo:
         for i, k in enumerate(SIGMAS)
     ]
     labels = [ax.text(0, 0, f"{k}σ", color=palette.ESTIMATE, fontsize=9, weight="bold") for k in SIGMAS]
+    (shadow,) = ax.plot([], [], "--", color=palette.INK, lw=1.0, label="1σ shadow: ±σx, ±σy")
+    ax_text.legend(handles=[shadow], loc="lower left", fontsize=8)  # beside the plot: never over a contour
     info = ax_text.text(
         0.0, 0.95, "", transform=ax_text.transAxes, ha="left", va="top", fontsize=10, family="monospace"
     )
     theory = mass_inside(np.array(SIGMAS), dim=2)
-    renderer = FigureRenderer(fig, [dots, *rings, *labels, info])
+    renderer = FigureRenderer(fig, [dots, *rings, *labels, shadow, info])
 
     def draw() -> None:
         Sig = model.Sig
@@ -84,6 +86,8 @@ def covariance_ellipse(seed: int = 0) -> Demo:
             update_covariance_ellipse(ring, (0, 0), Sig)
             axis = V[:, 1] if V[0, 1] >= 0 else -V[:, 1]  # the major axis, pointing right
             label.set_position(k * np.sqrt(w[1]) * axis * 1.03)  # at its right end
+        sx, sy = np.sqrt(Sig[0, 0]), np.sqrt(Sig[1, 1])  # the 1σ ellipse's shadow: ±sigma_x, ±sigma_y
+        shadow.set_data([-sx, sx, sx, -sx, -sx], [-sy, -sy, sy, sy, -sy])
         frac = model.fractions()
         rows = "\n".join(
             f" {k}σ   {100 * f:5.1f}% {100 * t:5.1f}%" for k, f, t in zip(SIGMAS, frac, theory, strict=True)
@@ -96,9 +100,10 @@ def covariance_ellipse(seed: int = 0) -> Demo:
         )
 
     caption = (
-        "<b>Covariance ellipse.</b> Dots: 1000 samples of N(0, Σ); teal: the 1σ, 2σ, 3σ contours. "
-        "σx² and σy² stretch the ellipse, ρ tilts it; the table compares the share of samples inside "
-        "each contour with theory (1 − e<sup>−k²/2</sup> in 2-D)."
+        "<b>Covariance ellipse.</b> Dots: 1000 samples of N(0, Σ); teal: the 1σ, 2σ, 3σ contours; dashed: the box "
+        "±σx, ±σy that the 1σ contour fits in (its shadow on the axes). σx² and σy² stretch the ellipse, "
+        "ρ tilts it; the table compares the share of samples inside each contour with theory "
+        "(1 − e<sup>−k²/2</sup> in 2-D)."
     )
     return Demo(
         name="covariance-ellipse",

@@ -8,13 +8,13 @@ import numpy as np
 from ..filters.kalman import kf_1d_gain, kf_1d_predict, kf_1d_update
 from ..plots import palette
 from ..plots.artists import gaussian_curve, update_gaussian_curve
-from ..plots.style import FigureRenderer, new_figure, nice_limit
+from ..plots.style import FigureRenderer, fixed_width_ticks, new_figure, nice_limit
 from ._base import Demo, button, slider
 
-MU0, VAR0 = 2.0, 0.40  # the lesson's prior at time step 0: m, m^2
+MU0, VAR0 = 2.0, 0.40  # the worked example's prior at time step 0 (chapter 3): m, m^2
 U = 1.0  # m commanded each step
-LESSON_Z = (3.6, 4.7)  # the lesson's readings at time steps 1 and 2 (m)
-SENSOR_VAR = 0.1  # m^2: noise of the simulated readings after step 2 (the lesson's Q)
+WORKED_Z = (3.6, 4.7)  # the worked cycles' readings at time steps 1 and 2 (m)
+SENSOR_VAR = 0.1  # m^2: noise of the simulated readings after step 2 (the worked example's Q)
 HALF_WIDTH = 3.5  # m shown either side of the belief
 
 
@@ -36,10 +36,10 @@ class StepThroughModel:
         self.replay()
 
     def reading(self, k: int) -> float:
-        """The sensor reading at time step ``k >= 1`` (m): the lesson's 3.6 and 4.7, then
+        """The sensor reading at time step ``k >= 1`` (m): the worked cycles' 3.6 and 4.7, then
         seeded readings of a robot that is at ``MU0 + k U`` metres."""
-        if k <= len(LESSON_Z):
-            return LESSON_Z[k - 1]
+        if k <= len(WORKED_Z):
+            return WORKED_Z[k - 1]
         noise = np.random.default_rng([self.seed, k]).standard_normal()  # the same for a seed and step
         return MU0 + k * U + float(np.sqrt(SENSOR_VAR) * noise)
 
@@ -101,7 +101,7 @@ class StepThroughModel:
 
 
 def _table(rows) -> str:
-    """The last few completed updates as the lesson's table."""
+    """The last few completed updates as a hand table (one row per update, as in chapter 3)."""
     cell = "style='padding:0 8px;text-align:right'"
     bar = "<span style='text-decoration:overline'>{}</span>"
     names = ("step", bar.format("μ"), bar.format("σ") + "²", "z", "z − " + bar.format("μ"), "K", "μ", "σ²")
@@ -111,15 +111,17 @@ def _table(rows) -> str:
         for row in rows[-4:]
     )
     if not rows:
-        return "<i style='font-size:12px'>Each Update adds a row here for its time step, as in the lesson's table.</i>"
+        return (
+            "<i style='font-size:12px'>Each Update adds a row here for its time step, as in the hand tables above.</i>"
+        )
     return f"<table style='font-family:monospace;font-size:12px'><tr>{head}</tr>{body}</table>"
 
 
 def step_through(seed: int = 0) -> Demo:
     """Demo "step through" (chapter 3): press Predict and Update to walk the
-    scalar Kalman filter one half-step at a time, starting from the lesson's
-    prior N(2.0, 0.40) at time step 0.  The k-th Predict moves the robot to
-    time step k; an Update uses that step's reading (the lesson's 3.6 and 4.7
+    scalar Kalman filter one half-step at a time, starting from the worked
+    example's prior N(2.0, 0.40) at time step 0.  The k-th Predict moves the robot to
+    time step k; an Update uses that step's reading (the worked cycles' 3.6 and 4.7
     at steps 1 and 2) and is refused if the step has none left.
 
     Returns
@@ -130,6 +132,7 @@ def step_through(seed: int = 0) -> Demo:
     fig, ax = new_figure(8.0, 3.4)
     ax.set_xlabel("position x (m)")
     ax.set_ylabel("density")
+    fixed_width_ticks(ax.yaxis)  # the layout is found once: keep the density labels one width
     x = np.linspace(0.0, 10.0, 600)
     before = gaussian_curve(ax, x, MU0, VAR0, palette.ESTIMATE, "belief before this step", fill=False)
     before[0].set_linestyle("--")

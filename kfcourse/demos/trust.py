@@ -9,7 +9,7 @@ from ..filters.gaussian import fuse
 from ..filters.kalman import kf_1d_gain
 from ..plots import palette
 from ..plots.artists import gain_gauge, gaussian_curve, update_gain_gauge, update_gaussian_curve
-from ..plots.style import FigureRenderer, new_figure, nice_limit
+from ..plots.style import FigureRenderer, fixed_width_ticks, new_figure, nice_limit
 from ._base import Demo, slider
 
 X_RANGE = (-6.0, 6.0)
@@ -57,6 +57,7 @@ def trust_slider(seed: int = 0) -> Demo:
     ax.set_xlim(*X_RANGE)
     ax.set_xlabel("position x")
     ax.set_ylabel("density")
+    fixed_width_ticks(ax.yaxis)  # the layout is found once: keep the density labels one width
     pred = gaussian_curve(ax, x, model.mu_pred, model.var_pred, palette.PREDICTION, "prediction")
     meas = gaussian_curve(ax, x, model.z, model.var_meas, palette.MEASUREMENT, "measurement")
     fused = gaussian_curve(ax, x, *model.fused(), palette.ESTIMATE, "fused")

@@ -8,7 +8,7 @@ from . import palette
 from .style import new_figure
 
 
-def kf_run_chart(run, title: str = "", detrend: bool = True):
+def kf_run_chart(run, title: str = "", detrend: bool = True, start: int = 0):
     """Chapter 3: a 1-D Kalman filter run over time, in two panels.
 
     Top: the estimate ``mu`` with its ``±sigma`` band (teal) against the truth
@@ -18,7 +18,9 @@ def kf_run_chart(run, title: str = "", detrend: bool = True):
     curve: it shows where things are *relative to where the commands alone
     would have put the robot*.  Bottom: the innovations ``z - mu_bar``
     (orange) with the ``±sqrt(S)`` band the filter expects them in (purple,
-    ``S = var_bar + Q``) and their mean (dashed).
+    ``S = var_bar + Q``) and their mean (dashed) over the steps from index
+    ``start`` on, the same window as the run's health numbers
+    (:meth:`kfcourse.sim.walk.WalkRun.health`); the legend names the window.
 
     Introduced in chapter 3.
 
@@ -31,6 +33,9 @@ def kf_run_chart(run, title: str = "", detrend: bool = True):
     detrend : bool
         Subtract the commanded path (needs ``run.x0`` and ``run.u``); if False,
         plot positions as they are.
+    start : int
+        Index of the first step in the mean innovation (0: all steps; 20: from time step 21 on,
+        after the start-up).
 
     Returns
     -------
@@ -58,8 +63,18 @@ def kf_run_chart(run, title: str = "", detrend: bool = True):
     ax_nu.fill_between(t, -band, band, color=palette.PREDICTION, alpha=0.15, lw=0, label="± √S")
     ax_nu.axhline(0.0, color=palette.INK, lw=0.8)
     ax_nu.plot(t, innovation, "o-", color=palette.MEASUREMENT, ms=2.5, lw=0.8, label="innovation z − μ̄")
-    mean = float(np.mean(innovation))
-    ax_nu.axhline(mean, color=palette.MEASUREMENT, ls="--", lw=1.2, label=f"mean {mean:+.2f} m")
+    if isinstance(start, bool) or not isinstance(start, (int, np.integer)) or not 0 <= start < t.size:
+        raise ValueError(f"start must be a whole number from 0 to {t.size - 1}, got {start!r}")
+    mean = float(np.mean(innovation[start:]))  # over the window only
+    window = "all steps" if start == 0 else f"steps {t[start]:.0f}–{t[-1]:.0f}"
+    ax_nu.plot(
+        t[start:][[0, -1]],
+        [mean, mean],
+        color=palette.MEASUREMENT,
+        ls="--",
+        lw=1.2,
+        label=f"mean ({window}) {mean:+.2f} m",
+    )
     ax_nu.set_xlabel("time step k")
     ax_nu.set_ylabel("innovation (m)")
     ax_nu.legend(loc="upper left", fontsize=8, ncols=3)

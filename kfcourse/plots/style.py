@@ -13,6 +13,7 @@ import numpy as np
 from matplotlib.artist import Artist
 from matplotlib.backends.backend_agg import FigureCanvasAgg
 from matplotlib.figure import Figure
+from matplotlib.ticker import FuncFormatter
 from PIL import Image
 
 from . import palette
@@ -58,6 +59,28 @@ def nice_limit(value: float) -> float:
     """The next power of two above ``value``: an axis limit that changes rarely
     while dragging, so the static background need not be redrawn often."""
     return float(2.0 ** np.ceil(np.log2(max(value, 1e-12))))
+
+
+FIGURE_SPACE = "\u2007"  # a space as wide as a digit
+
+
+def fixed_width_ticks(axis, width: int = 6) -> None:
+    """Give every tick label of ``axis`` the same width, ``width`` digits.
+
+    A renderer lays the figure out once (:class:`FigureRenderer`), for the tick
+    labels it sees first.  If the limits change later and the labels get wider
+    ("0.5" becomes "1.75"), they would push the axis label off the figure.
+    Padding every label on the left with digit-wide spaces keeps their width,
+    and so the layout, the same whatever the limits.  Introduced in chapter 3.
+
+    Parameters
+    ----------
+    axis : matplotlib.axis.Axis
+        E.g. ``ax.yaxis``.
+    width : int
+        Characters each label is padded to (labels up to 4 significant digits).
+    """
+    axis.set_major_formatter(FuncFormatter(lambda value, _: f"{value:.4g}".rjust(width, FIGURE_SPACE)))
 
 
 class FigureRenderer:

@@ -78,6 +78,24 @@ class WalkRun:
         about 0.68 when the filter's variance is honest."""
         return float(np.mean(np.abs(self.error()[start:]) <= np.sqrt(self.var[start:])))
 
+    def innovation_correlation(self, start: int = 0) -> float:
+        """Correlation of each innovation with the next (lag 1) from index ``start`` on; about 0
+        when the filter is healthy: one surprise does not predict the next.  Needs at least
+        three innovations from ``start`` on."""
+        nu = self.innovation[start:]
+        if nu.size < 3:
+            raise ValueError(f"start must leave at least 3 innovations, got start={start} of {self.innovation.size}")
+        return float(np.corrcoef(nu[:-1], nu[1:])[0, 1])  # does one innovation predict the next?
+
+    def health(self, start: int = 0) -> str:
+        """One line of health numbers from index ``start`` on (time step ``start + 1``): the final
+        gain, the RMS error, the share of true positions inside ``±sigma``, the mean innovation,
+        the share of innovations inside ``±sqrt(S)`` and their lag-1 correlation.  Introduced in
+        chapter 3."""
+        estimate = f"RMS error {self.rms_error(start):.3f} m  truth in ±σ {self.truth_inside(start):4.0%}"
+        innovations = f"mean ν {self.mean_innovation(start):+.3f} m  ν in ±√S {self.innovations_inside(start):4.0%}"
+        return f"K {self.K[-1]:.3f}  {estimate}  {innovations}  corr {self.innovation_correlation(start):+.2f}"
+
 
 def simulate_walk(
     n_steps: int = 100,

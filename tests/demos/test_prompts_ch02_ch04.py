@@ -39,6 +39,16 @@ def shadow(ring: Ellipse) -> tuple[float, float]:
     return math.hypot(a * math.cos(t), b * math.sin(t)), math.hypot(a * math.sin(t), b * math.cos(t))
 
 
+def shadow_box(demo) -> tuple[float, float]:
+    """Half-width and half-height of the dashed box drawn around the ellipses."""
+    (box,) = [line for line in demo.renderer.fig.axes[0].get_lines() if line.get_linestyle() == "--"]
+    assert box.get_visible() and box in demo.renderer.dynamic  # redrawn on every change
+    xy = box.get_xydata()
+    assert len(xy) == 5 and np.allclose(xy[0], xy[-1])  # a closed rectangle
+    assert np.allclose(xy.min(axis=0), -xy.max(axis=0))  # centred on the mean
+    return float(xy[:, 0].max()), float(xy[:, 1].max())
+
+
 def readout(demo) -> str:
     """All text drawn in the demo's figure outside the plot itself."""
     return "\n".join(t.get_text() for ax in demo.renderer.fig.axes[1:] for t in ax.texts)
@@ -75,7 +85,7 @@ def test_ch02_variance_sliders_stretch_along_x_and_y_and_the_shares_stay(ellipse
 
 def test_ch02_rho_tilts_and_thins_the_ellipse_and_sets_the_off_diagonal(ellipse_demo):
     """Prompt: drag ρ towards +0.9 and then −0.9: the ellipse tilts and thins; the
-    off-diagonal entries of Σ change; its shadow stays ±σx along x and ±σy along y."""
+    off-diagonal entries of Σ change; its shadow stays ±σx along x and ±σy along y, the dashed box."""
     demo = ellipse_demo
     start = rings(demo)[0]
     start_angle, start_minor = start.angle, min(start.width, start.height)
@@ -88,9 +98,43 @@ def test_ch02_rho_tilts_and_thins_the_ellipse_and_sets_the_off_diagonal(ellipse_
         assert min(ring.width, ring.height) < 0.75 * start_minor  # and thins
         for k, each in zip((1, 2, 3), rings(demo), strict=True):
             assert shadow(each) == pytest.approx((k * math.sqrt(2.0), k * 1.0))  # the shadow stays put
+        box = shadow_box(demo)
+        assert box == pytest.approx((math.sqrt(2.0), 1.0))  # the dashed box is drawn at ±σx, ±σy
+        assert shadow(rings(demo)[0]) == pytest.approx(box)  # and the 1σ ellipse reaches exactly to it
         sig = shown_sigma(demo)
         assert sig[0, 1] == pytest.approx(sign * off, abs=0.006)
         assert sig[1, 0] == pytest.approx(sign * off, abs=0.006)
+
+
+def test_ch02_the_shadow_box_follows_the_variance_sliders(ellipse_demo):
+    """The dashed shadow box is ±σx, ±σy for every slider setting, and the 1σ ellipse touches it."""
+    demo = ellipse_demo
+    for var_x, var_y, rho in ((0.1, 4.0, 0.95), (4.0, 0.1, -0.95), (2.5, 2.5, 0.0), (0.3, 0.7, -0.4)):
+        demo.controls["var_x"].value, demo.controls["var_y"].value = var_x, var_y
+        demo.controls["rho"].value = rho
+        assert shadow_box(demo) == pytest.approx((math.sqrt(var_x), math.sqrt(var_y)))
+        assert shadow(rings(demo)[0]) == pytest.approx(shadow_box(demo))
+
+
+@pytest.mark.parametrize("var_x", [0.1, 4.0])
+@pytest.mark.parametrize("var_y", [0.1, 3.1, 4.0])
+@pytest.mark.parametrize("rho", [-0.95, 0.0, 0.95])
+def test_ch02_every_contour_and_its_label_fit_in_the_view(ellipse_demo, var_x, var_y, rho):
+    """No slider position clips a contour or a contour's label: every ring and label, as drawn on
+    the picture, lies inside the plot area."""
+    demo = ellipse_demo
+    demo.controls["var_x"].value, demo.controls["var_y"].value = var_x, var_y
+    demo.controls["rho"].value = rho
+    fig = demo.renderer.fig
+    ax = fig.axes[0]
+    renderer = fig.canvas.get_renderer()
+    frame = ax.get_window_extent(renderer)
+    labels = [t for t in ax.texts if t.get_text().endswith("σ")]
+    assert len(labels) == 3
+    for artist in [*rings(demo), *labels]:
+        box = artist.get_window_extent(renderer)
+        inside = frame.x0 <= box.x0 and box.x1 <= frame.x1 and frame.y0 <= box.y0 and box.y1 <= frame.y1
+        assert inside, f"{artist} at {box} is outside the plot {frame}"
 
 
 def test_ch02_rho_zero_and_equal_variances_draw_circles(ellipse_demo):
@@ -275,3 +319,22 @@ def test_ch04_cycle_1_again(trust_demo):
     assert var_f == pytest.approx(0.086, abs=0.002)
     assert peak_x(demo, palette.ESTIMATE) == pytest.approx(3.514, abs=0.02)
     assert "μ = 3.51" in trust_readout(demo)
+
+
+@pytest.mark.parametrize("var_pred", [0.01, 0.1, 1.0, 10.0])
+@pytest.mark.parametrize("var_meas", [0.01, 0.3, 10.0])
+def test_ch04_the_density_label_is_never_cut_off(trust_demo, var_pred, var_meas):
+    """The layout is found once; whatever the y tick labels become, the "density" label and the
+    tick labels stay inside the picture."""
+    demo = trust_demo
+    demo.controls["var_pred"].value = var_pred
+    demo.controls["var_meas"].value = var_meas
+    demo.renderer.invalidate()
+    demo.renderer.png()  # a full redraw places the axis label next to the current tick labels
+    fig = demo.renderer.fig
+    renderer = fig.canvas.get_renderer()
+    ax = fig.axes[0]
+    for text in [ax.yaxis.label, *ax.get_yticklabels()]:
+        if text.get_visible() and text.get_text():
+            box = text.get_window_extent(renderer)
+            assert box.x0 >= 0 and box.x1 <= fig.bbox.x1, f"{text.get_text()!r} at {box}"

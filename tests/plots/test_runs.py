@@ -63,3 +63,26 @@ def test_bottom_panel_is_innovations_in_their_sqrt_S_band():
     ys = band.get_paths()[0].vertices[:, 1]
     assert ys.max() == pytest.approx(np.sqrt(run.S).max())
     assert isinstance(innovation, Line2D)
+
+
+@pytest.mark.parametrize("start", [0, 20])
+def test_mean_innovation_line_covers_its_window_and_the_legend_names_it(start):
+    """The dashed mean is over the steps from index ``start`` on, drawn only there, and its legend
+    entry says which steps and matches the run's own mean_innovation(start)."""
+    run = kf.sim.simulate_walk(seed=0, velocity=0.1)
+    _, bottom = kf.plots.kf_run_chart(run, start=start).axes
+    _, mean = lines_by_colour(bottom, palette.MEASUREMENT)
+    assert mean.get_ydata()[0] == pytest.approx(run.mean_innovation(start))
+    assert list(mean.get_xdata()) == [start + 1, 100]
+    label = mean.get_label()
+    assert f"{run.mean_innovation(start):+.2f} m" in label
+    assert ("all steps" in label) == (start == 0)
+    assert start == 0 or "steps 21–100" in label
+    assert run.mean_innovation(20) != pytest.approx(run.mean_innovation(0), abs=0.01)  # the window shows
+
+
+@pytest.mark.parametrize("start", [-1, 100, 2.5, True])
+def test_bad_start_is_refused(start):
+    run = kf.sim.simulate_walk(seed=0)
+    with pytest.raises(ValueError, match="start"):
+        kf.plots.kf_run_chart(run, start=start)

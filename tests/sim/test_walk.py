@@ -138,3 +138,35 @@ def test_bad_input_names_the_argument(kwargs):
     name = next(iter(kwargs)) if len(kwargs) == 1 else "Q"
     with pytest.raises(ValueError, match=name):
         simulate_walk(**kwargs)
+
+
+def test_innovation_correlation_of_known_sequences():
+    """Alternating innovations predict each other perfectly negatively, a ramp perfectly positively."""
+    from dataclasses import replace
+
+    run = simulate_walk(10, seed=0)
+    alternating = replace(run, innovation=np.array([1.0, -1.0] * 5))
+    ramp = replace(run, innovation=np.arange(10.0))
+    assert alternating.innovation_correlation() == pytest.approx(-1.0)
+    assert ramp.innovation_correlation(start=4) == pytest.approx(1.0)
+    with pytest.raises(ValueError, match="start"):
+        run.innovation_correlation(start=8)
+
+
+def test_innovation_correlation_tells_overcorrecting_from_sluggish():
+    """Q too small over-corrects (consecutive innovations swing apart), Q too large leaves the same
+    error step after step (they lean the same way); the tuned filter sits near 0."""
+    tuned, small, large = simulate_walk(seed=0), simulate_walk(seed=0, Q=0.0025), simulate_walk(seed=0, Q=25.0)
+    assert small.innovation_correlation(20) < -0.2
+    assert large.innovation_correlation(20) > 0.15
+    assert abs(tuned.innovation_correlation(20)) < 0.15
+
+
+def test_health_line_reports_the_run_from_start_on():
+    run = simulate_walk(seed=0, velocity=0.1)
+    line = run.health(start=20)
+    assert f"K {run.K[-1]:.3f}" in line
+    assert f"RMS error {run.rms_error(20):.3f} m" in line
+    assert f"mean ν {run.mean_innovation(20):+.3f} m" in line
+    assert f"corr {run.innovation_correlation(20):+.2f}" in line
+    assert f"mean ν {run.mean_innovation(0):+.3f} m" not in line  # the window matters: all steps differ
