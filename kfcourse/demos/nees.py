@@ -90,7 +90,7 @@ def nees_panel(seed: int = 0) -> Demo:
     ax.set_xlim(t[0], t[-1])
     ax.set_ylim(*Y_RANGE)
     ax.set_xlabel("time (s)")
-    ax.set_ylabel("average NEES  ε̄")
+    ax.set_ylabel(r"average NEES  $\bar\epsilon$")
     ax.axhspan(low, high, color=palette.TRUTH, alpha=0.35, lw=0, label=f"95 % band for {N_TRACKS} honest runs")
     ax.axhline(DOF, color=palette.INK, lw=1.0, ls="--", label=f"{DOF} = state dimension")
     (curve,) = ax.plot([], [], color=palette.ESTIMATE, lw=2.2, label="average NEES of the filter")

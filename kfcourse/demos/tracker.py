@@ -8,7 +8,7 @@ import numpy as np
 from ..plots import palette
 from ..plots.artists import covariance_ellipse, update_covariance_ellipse
 from ..plots.style import FigureRenderer, new_figure
-from ..sim.target import TargetRun, filter_target, process_noise, simulate_target
+from ..sim.target import START_STEPS, TargetRun, filter_target, process_noise, simulate_target
 from ._base import Demo, slider
 
 Q_TUNED = 1.0  # m², the filter's assumed sensor variance to start with (the world's is 1 m²)
@@ -61,7 +61,9 @@ class Tracker:
     def regime(self) -> str:
         """Which end of the trust slider the filter is at, in words."""
         if self.frame == 0:
-            return "starting guess: the first reading, standing still"
+            return "starting guess: the first reading, velocity unknown"
+        if self.frame < START_STEPS:
+            return "start-up: fitting a straight line through the readings so far"
         K = self.gain()
         if K >= K_JITTERY:
             return "K → 1: jittery, copies every reading (R huge or Q tiny)"
@@ -111,6 +113,15 @@ def tracker(seed: int = 0) -> Demo:
     ax.legend(loc="lower left", bbox_to_anchor=(0.0, 1.0), ncols=4, fontsize=9)
     readout = widgets.HTML()  # text under the picture: no glyphs to render into the PNG
     readout.add_class("kf-readout")
+
+    def velocity_tip(p, vel):
+        """Where the velocity line from ``p`` ends: ARROW_TIME ahead, cut short at the edge of the view."""
+        d = ARROW_TIME * vel
+        room = np.where(d > 0, hi - p, p - lo)  # distance to the edge the line heads for, per axis
+        with np.errstate(divide="ignore"):
+            fits = np.where(d != 0, room / np.abs(d), np.inf).min()  # fraction of the line inside the view
+        return p + float(np.clip(fits, 0.0, 1.0)) * d
+
     renderer = FigureRenderer(fig, [pings, trail, truth_vel, truth_dot, est_vel, est_dot, ring])
 
     def draw() -> None:
@@ -122,7 +133,7 @@ def tracker(seed: int = 0) -> Demo:
         truth_dot.set_data([p_true[0]], [p_true[1]])
         truth_vel.set_data(*np.column_stack([p_true, p_true + ARROW_TIME * v_true]))
         est_dot.set_data([p_est[0]], [p_est[1]])
-        est_vel.set_data(*np.column_stack([p_est, p_est + ARROW_TIME * v_est]))
+        est_vel.set_data(*np.column_stack([p_est, velocity_tip(p_est, v_est)]))
         update_covariance_ellipse(ring, p_est, est.Sig[k, :2, :2])
         e_est, e_raw = model.errors()
         readout.value = (
@@ -138,7 +149,7 @@ def tracker(seed: int = 0) -> Demo:
         "shows where it would be 1 s later). Orange dots: noisy position readings (σ = 1 m). "
         "Teal: the filter's estimate, its trail, its estimated velocity and its 2σ ellipse. "
         "<i>Run</i> plays time, <i>step</i> scrubs it. <i>Q</i> is the sensor noise the filter "
-        "<i>assumes</i> and <i>R</i> the random acceleration it assumes (its process noise): "
+        "<i>assumes</i>; <i>σₐ²</i> is the random acceleration it assumes, which sets its process noise R: "
         "they retune the filter, the target and the readings stay the same. "
         "The lines under the picture give both velocities, the mean errors so far, and the position gain K "
         "with its regime: jittery (K → 1), balanced, or coasting (K → 0)."
@@ -158,7 +169,7 @@ def tracker(seed: int = 0) -> Demo:
             "R": (
                 slider(
                     widgets.FloatLogSlider,
-                    "R: assumed acceleration variance (m²/s⁴)",
+                    "σₐ²: assumed acceleration variance (m²/s⁴)",
                     ACCEL_TUNED,
                     -3,
                     7,

@@ -73,9 +73,19 @@ def predict_update_chart(
     half_width = k * math.sqrt(Q) if z is not None else 0.0
     if z is not None:
         ax.axvspan(z - half_width, z + half_width, color=palette.MEASUREMENT, alpha=0.15, lw=0)
-        ax.axvline(z, color=palette.MEASUREMENT, ls=":", lw=1.8, label=f"reading z ± {k:g}σ_Q")
-    covariance_ellipse(ax, mu_bar, Sig_bar, nsig=k, color=palette.PREDICTION, label=f"prediction Σ̄ ({k:g}σ)", zorder=3)
-    covariance_ellipse(ax, mu, Sig, nsig=k, color=palette.ESTIMATE, label=f"posterior Σ ({k:g}σ)", zorder=3)
+        ax.axvline(z, color=palette.MEASUREMENT, ls=":", lw=1.8, label=rf"reading $z \pm {k:g}\sigma_Q$")
+    covariance_ellipse(
+        ax,
+        mu_bar,
+        Sig_bar,
+        nsig=k,
+        color=palette.PREDICTION,
+        label=rf"prediction $\bar\Sigma$ (${k:g}\sigma$)",
+        zorder=3,
+    )
+    covariance_ellipse(
+        ax, mu, Sig, nsig=k, color=palette.ESTIMATE, label=rf"posterior $\Sigma$ (${k:g}\sigma$)", zorder=3
+    )
     ax.plot(*mu_bar, "o", color=palette.PREDICTION, ms=6, zorder=4)
     ax.plot(*mu, "o", color=palette.ESTIMATE, ms=6, zorder=4)
 
@@ -94,5 +104,5 @@ def predict_update_chart(
         ax.set_aspect("equal", adjustable="box")  # one scale on both axes, so the drawn tilt is the true one
     ax.set_xlabel(labels[0])
     ax.set_ylabel(labels[1])
-    ax.legend(loc="upper center", bbox_to_anchor=(0.5, -0.16), ncol=3, fontsize=8)
+    fig.legend(loc="outside lower center", ncols=3, fontsize=8, frameon=False)  # under the axes, inside the figure
     return fig

@@ -28,7 +28,10 @@ from ..models import constant_velocity
 DT = 0.1  # s between readings
 SPEED = 2.0  # m/s, the target's constant speed
 SENSOR_STD = 1.0  # m, the world's true position noise (per axis)
-START_SPEED_STD = 2.0  # m/s, the filter's initial velocity uncertainty (per axis)
+START_SPEED_STD = 2.0  # m/s, the spread of the NEES targets' starting velocities (per axis)
+START_STEPS = 20  # readings (2 s) through which filter_target fits its starting line
+START_STD = 1.0  # m, the sensor's rated noise, used for the starting line whatever Q the filter assumes
+START_SPEED_VAR = 1e4  # (m/s)², "no idea of the velocity" before the second reading
 
 # The turning target's path: (duration in s, turn rate in rad/s) per leg.
 LEGS = (
@@ -67,7 +70,7 @@ class TargetEstimates:
 
     mu: np.ndarray  #: (T, 4) estimated state [px, py, vx, vy]
     Sig: np.ndarray  #: (T, 4, 4) estimated covariance
-    K: np.ndarray  #: (T, 4, 2) Kalman gain used at step k (zero at k = 0, the starting guess)
+    K: np.ndarray  #: (T, 4, 2) Kalman gain used at step k (zero at k = 0; the start-up gain up to START_STEPS - 1)
     R: np.ndarray  #: (4, 4) the process noise the filter assumed
     Q: np.ndarray  #: (2, 2) the measurement noise the filter assumed
 
@@ -132,23 +135,26 @@ def simulate_target(seed: int = 0, sensor_std: float = SENSOR_STD) -> TargetRun:
     )
 
 
-def _start(z0, Q):
-    """The filter's first guess: the first reading, standing still, vague about velocity."""
+def _start_at_rest(z0, Q):
+    """The NEES filters' first guess: the first reading, standing still, vague about velocity."""
     mu0 = np.concatenate([z0, np.zeros(2)])
     Sig0 = np.zeros((4, 4))
     Sig0[:2, :2] = Q  # as sure of the position as of one reading
-    Sig0[2:, 2:] = START_SPEED_STD**2 * np.eye(2)
+    Sig0[2:, 2:] = START_SPEED_STD**2 * np.eye(2)  # the spread the targets' velocities are drawn from
     return mu0, Sig0
 
 
 def filter_target(run: TargetRun, R, Q) -> TargetEstimates:
     r"""Track ``run`` with a constant-velocity Kalman filter that assumes noise ``R``, ``Q``.
 
-    Starts from the first reading with zero velocity (covariance ``Q`` for the
-    position, ``START_SPEED_STD**2`` for each velocity), then runs one
-    :func:`kf_step` for every later reading.  The gains those steps used are
-    recomputed afterwards from the recorded covariances, all steps at once.
-    Introduced in chapter 6.
+    **Start-up** (the first ``START_STEPS`` readings, 2 s): the velocity comes from the
+    readings, not from a guess.  The filter starts at the first reading, "no idea of
+    the velocity" (variance ``START_SPEED_VAR``), and fits a straight line at constant
+    velocity through the readings so far: Kalman cycles with no process noise and the
+    sensor's rated noise ``START_STD`` — the same start whatever ``R`` and ``Q`` the
+    filter is told.  **Tracking**: from then on one :func:`kf_step` per reading with
+    the assumed ``R`` and ``Q``.  The gains of all steps are recomputed afterwards from
+    the recorded covariances, all at once.  Introduced in chapter 6.
 
     Parameters
     ----------
@@ -166,15 +172,18 @@ def filter_target(run: TargetRun, R, Q) -> TargetEstimates:
     Q = v.covariance(Q, "Q", 2)
     F, H = constant_velocity(run.dt, dim=2)
     T = run.t.size
+    R_used = np.where(np.arange(T)[:, None, None] < START_STEPS, 0.0, R)  # (T, 4, 4): no process noise at start-up
+    Q_used = np.where(np.arange(T)[:, None, None] < START_STEPS, START_STD**2 * np.eye(2), Q)  # (T, 2, 2)
     mu_all, Sig_all, K_all = np.empty((T, 4)), np.empty((T, 4, 4)), np.zeros((T, 4, 2))
-    mu, Sig = _start(run.z[0], Q)
+    mu = np.concatenate([run.z[0], np.zeros(2)])  # at the first reading, velocity unknown
+    Sig = np.diag([START_STD**2, START_STD**2, START_SPEED_VAR, START_SPEED_VAR])
     mu_all[0], Sig_all[0] = mu, Sig
     for k in range(1, T):
-        mu, Sig = kf_step(mu, Sig, None, run.z[k], F, None, H, R, Q)
+        mu, Sig = kf_step(mu, Sig, None, run.z[k], F, None, H, R_used[k], Q_used[k])
         mu_all[k], Sig_all[k] = mu, Sig
     # The gain of every update, all at once from the covariance before it (a stack of T - 1 matrices):
-    Sig_bar = F @ Sig_all[:-1] @ F.T + R  # Sig_bar = F Sig F^T + R
-    S = H @ Sig_bar @ H.T + Q  # innovation covariance S = H Sig_bar H^T + Q
+    Sig_bar = F @ Sig_all[:-1] @ F.T + R_used[1:]  # Sig_bar = F Sig F^T + R
+    S = H @ Sig_bar @ H.T + Q_used[1:]  # innovation covariance S = H Sig_bar H^T + Q
     K_all[1:] = Sig_bar @ H.T @ np.linalg.inv(S)  # K = Sig_bar H^T S^-1
     return TargetEstimates(_read_only(mu_all), _read_only(Sig_all), _read_only(K_all), _read_only(R), _read_only(Q))
 
@@ -245,7 +254,10 @@ def simulate_tracks(
 def filter_tracks(batch: TrackBatch, R, Q) -> tuple[np.ndarray, np.ndarray]:
     """Run one constant-velocity filter per track, all at once with :func:`kf_step_batch`.
 
-    Same start as :func:`filter_target`.  Introduced in chapter 6.
+    Each filter starts at its first reading, standing still, with position
+    covariance ``Q`` and velocity variance ``START_SPEED_STD**2``: in this world the
+    velocities are drawn from exactly that spread, so the start is honest when ``Q``
+    is.  Introduced in chapter 6.
 
     Returns
     -------
@@ -256,7 +268,7 @@ def filter_tracks(batch: TrackBatch, R, Q) -> tuple[np.ndarray, np.ndarray]:
     F, H = constant_velocity(batch.dt, dim=2)
     N, T, _ = batch.truth.shape
     mu_all, Sig_all = np.empty((N, T, 4)), np.empty((N, T, 4, 4))
-    starts = [_start(z0, Q) for z0 in batch.z[:, 0]]  # each track's first guess, as in filter_target
+    starts = [_start_at_rest(z0, Q) for z0 in batch.z[:, 0]]  # each track's first guess
     mu = np.array([mu0 for mu0, _ in starts])
     Sig = np.array([Sig0 for _, Sig0 in starts])
     mu_all[:, 0], Sig_all[:, 0] = mu, Sig

@@ -105,3 +105,31 @@ def test_factor_extremes_stay_finite_and_on_the_right_side(which):
         assert np.isfinite(m.avg_nees).all() and (m.avg_nees > 0).all()
         assert m.verdict().startswith(verdict)
         assert "nan" not in demo.children[2].value.lower()
+
+
+def test_try_prompts_in_order_on_one_panel():
+    demo = make()
+    m = demo.model
+    low, high = m.band
+    text = lambda: demo.children[2].value  # noqa: E731  (the readout under the picture)
+    # 1. At factor 1: inside the band at almost every step (93 % here: a 95 % band lets a few steps out).
+    below, inside, above = m.fractions()
+    assert m.factor == 1.0 and m.verdict().startswith("honest")
+    assert round(inside, 2) == 0.93 and below + above > 0  # a few steps out, not none
+    assert "93%" in text()
+    # 2. Choose Q and drag factor to 0.1: far above the band, about 25. Then to 10: below the band.
+    set_mistune(demo, "Q", 0.1)
+    assert m.fractions()[2] == 1.0 and m.verdict().startswith("over-confident")
+    assert round(m.avg_nees.mean()) == 25
+    set_mistune(demo, "Q", 10.0)
+    assert m.fractions()[0] == 1.0 and m.verdict().startswith("timid")
+    # 3. Choose R and do the same: 0.1 lifts the curve above the band after about a second; 10 drops it below.
+    set_mistune(demo, "R", 0.1)
+    out = np.flatnonzero(m.avg_nees > high)
+    first = out[0] * m.batch.dt
+    assert 0.8 <= first <= 1.6  # after about a second ...
+    assert np.array_equal(out, np.arange(out[0], N_STEPS))  # ... and above from then on
+    assert (m.avg_nees[: out[0]] >= low).all()  # inside until then
+    assert m.verdict().startswith("over-confident") and m.verdict() in text()
+    set_mistune(demo, "R", 10.0)
+    assert m.fractions()[0] > 0.7 and m.verdict().startswith("timid")

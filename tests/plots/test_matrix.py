@@ -147,3 +147,18 @@ def test_bad_input_names_the_argument(kwargs, name):
     args = {"mu_bar": mu_bar, "Sig_bar": Sig_bar, "mu": mu, "Sig": Sig, "z": 1.2, "Q": 0.5} | kwargs
     with pytest.raises(ValueError, match=name):
         predict_update_chart(**args)
+
+
+def test_legend_is_mathtext_and_inside_the_figure():
+    mu_bar, Sig_bar, mu, Sig = worked_example()
+    fig = predict_update_chart(mu_bar, Sig_bar, mu, Sig, z=1.2, Q=0.5)
+    (legend,) = fig.legends
+    labels = [t.get_text() for t in legend.get_texts()]
+    assert labels == [
+        r"reading $z \pm 1\sigma_Q$",
+        r"prediction $\bar\Sigma$ ($1\sigma$)",
+        r"posterior $\Sigma$ ($1\sigma$)",
+    ]
+    FigureRenderer(fig).png()  # lays the figure out
+    box, page = legend.get_window_extent(), fig.bbox
+    assert page.x0 <= box.x0 and box.x1 <= page.x1 and page.y0 <= box.y0 and box.y1 <= page.y1

@@ -13,6 +13,9 @@ from kfcourse.models import constant_velocity
 from kfcourse.sim.target import (
     DT,
     SPEED,
+    START_SPEED_VAR,
+    START_STD,
+    START_STEPS,
     TargetEstimates,
     TargetRun,
     TrackBatch,
@@ -70,17 +73,33 @@ def test_filter_target_is_kf_step_and_keeps_the_world():
     assert all(not a.flags.writeable for a in arrays(est).values())
     F, H = constant_velocity(DT, dim=2)
     mu, Sig = est.mu[0], est.Sig[0]
-    assert np.array_equal(mu, [*run.z[0], 0.0, 0.0])
+    assert np.array_equal(mu, [*run.z[0], 0.0, 0.0])  # the first reading, velocity unknown
+    np.testing.assert_array_equal(np.diag(Sig), [START_STD**2] * 2 + [START_SPEED_VAR] * 2)
     for k in range(1, 30):
-        mu, Sig = kf.kf_step(mu, Sig, None, run.z[k], F, None, H, R, Q)
-        np.testing.assert_allclose(est.mu[k], mu, rtol=1e-12, atol=1e-12)
-        np.testing.assert_allclose(est.Sig[k], Sig, rtol=1e-12, atol=1e-12)
-        Sig_bar = F @ est.Sig[k - 1] @ F.T + R
-        K = Sig_bar @ H.T @ np.linalg.inv(H @ Sig_bar @ H.T + Q)
-        np.testing.assert_allclose(est.K[k], K, rtol=1e-10)
+        # start-up: a straight line through the readings (no process noise, the sensor's rated noise)
+        R_k, Q_k = (np.zeros((4, 4)), START_STD**2 * np.eye(2)) if k < START_STEPS else (R, Q)
+        mu, Sig = kf.kf_step(mu, Sig, None, run.z[k], F, None, H, R_k, Q_k)
+        np.testing.assert_allclose(est.mu[k], mu, rtol=1e-9, atol=1e-9)
+        np.testing.assert_allclose(est.Sig[k], Sig, rtol=1e-9, atol=1e-9)
+        Sig_bar = F @ est.Sig[k - 1] @ F.T + R_k
+        K = Sig_bar @ H.T @ np.linalg.inv(H @ Sig_bar @ H.T + Q_k)
+        np.testing.assert_allclose(est.K[k], K, rtol=1e-9, atol=1e-12)
     z_before = run.z.copy()
-    filter_target(run, 100 * R, 0.01 * Q)
+    other = filter_target(run, 100 * R, 0.01 * Q)
     assert np.array_equal(run.z, z_before)
+    # the start-up does not depend on the assumed noise; the tracking after it does
+    np.testing.assert_array_equal(other.mu[:START_STEPS], est.mu[:START_STEPS])
+    assert not np.allclose(other.mu[START_STEPS:], est.mu[START_STEPS:])
+
+
+def test_start_up_fits_the_least_squares_line():
+    run = simulate_target(3)
+    est = filter_target(run, process_noise(DT, 10.0), 1e4 * np.eye(2))
+    k = START_STEPS - 1
+    A = np.column_stack([np.ones(k + 1), run.t[: k + 1] - run.t[k]])  # p(t) = p_k + v (t - t_k)
+    coef, *_ = np.linalg.lstsq(A, run.z[: k + 1], rcond=None)  # rows: position at t_k, velocity
+    np.testing.assert_allclose(est.mu[k, :2], coef[0], atol=1e-3)  # the diffuse start is nearly exact
+    np.testing.assert_allclose(est.mu[k, 2:], coef[1], atol=1e-2)
 
 
 def test_process_noise_is_a_random_acceleration():
