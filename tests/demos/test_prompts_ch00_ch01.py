@@ -28,6 +28,8 @@ def test_ch0_first_frame_shows_the_whole_run_and_the_filter_beating_both_witness
     assert filt < 0.5 * raw and filt < 0.6 * dead
     e_raw, e_dead, e_filt = m.errors()
     n = e_dead.size
+    lowest = np.mean((e_filt < e_raw) & (e_filt < e_dead))  # "lowest most of the time (three steps in four)"
+    assert 0.5 < lowest < 1 and round(lowest, 2) == 0.75
     assert rms(e_dead[: n // 10]) < 0.5 * rms(e_dead[-n // 3 :])  # dead reckoning drifts away
     ax_err = demo.renderer.fig.axes[1]
     drawn = [line.get_ydata() for line in ax_err.get_lines()]
@@ -47,10 +49,12 @@ def test_ch0_run_replays_time_from_the_start():
 
 
 def test_ch0_sensor_noise_up_raw_explodes_filter_holds():
-    """Drag sensor noise up towards 3 m: the raw RMS grows with it, the filtered RMS stays well
-    below it (about 3.2 m against 0.66 m at 3 m), and dead reckoning does not change."""
+    """Drag sensor noise up to 3 m: the view widens to hold the pings, the raw RMS grows with the
+    slider (about 3.2 m at 3 m), the filter stays within tens of centimetres (0.37 m), about as good
+    as dead reckoning (0.34 m), which does not change."""
     demo = kf.demos.raw_vs_filtered(seed=0)
     noise = demo.controls["sensor_noise"]
+    ax, ax_err = demo.renderer.fig.axes[:2]
     raws, filts, deads = [], [], []
     for value in (0.4, 1.0, 2.0, noise.max):
         noise.value = value
@@ -59,10 +63,14 @@ def test_ch0_sensor_noise_up_raw_explodes_filter_holds():
         filts.append(filt)
         deads.append(dead)
         assert filt < raw
+        run = demo.model.run
+        lo, hi = ax.get_ylim()
+        assert lo <= run.z.min() and run.z.max() <= hi  # every ping is in view ...
+        assert max(e.max() for e in demo.model.errors()) <= ax_err.get_ylim()[1]  # ... and every error
     assert np.all(np.diff(raws) > 0)  # the raw trace gets worse with every step of the slider
     assert noise.max == 3.0
-    assert round(raws[-1], 1) == 3.2 and round(filts[-1], 2) == 0.66
-    assert filts[-1] < raws[-1] / 4
+    assert round(raws[-1], 1) == 3.2 and round(filts[-1], 2) == 0.37 and round(deads[-1], 2) == 0.34
+    assert filts[-1] < 0.5 and abs(filts[-1] - deads[-1]) < 0.1  # tens of cm, close to dead reckoning
     assert deads == pytest.approx([deads[0]] * 4)  # dead reckoning never looks at the sensor
 
 
@@ -78,16 +86,37 @@ def test_ch0_sensor_noise_down_filter_follows_the_sensor():
     assert rms(demo.model.run.mu - demo.model.run.z) > 0.2  # at the default it does not just copy them
 
 
-def test_ch0_new_noise_draws_a_fresh_run():
+def test_ch0_new_noise_draws_a_fresh_run_and_the_second_is_lucky_for_dead_reckoning():
+    """After the previous prompt (sensor noise at 0.05 m), set it back to 0.4 m and press New noise:
+    a fresh run; press it a second time and dead reckoning (11 cm RMS) beats the filter (12 cm)."""
     demo = kf.demos.raw_vs_filtered(seed=0)
+    noise = demo.controls["sensor_noise"]
+    noise.value = 0.05
+    noise.value = 0.4
     before = demo.model.run
     picture = bytes(demo.image.value)
     demo.controls["new_noise"].click()
     after = demo.model.run
     assert not np.allclose(after.z, before.z)
     assert not np.allclose(after.truth, before.truth)
-    assert after.sensor_std == before.sensor_std
+    assert after.sensor_std == before.sensor_std == 0.4
     assert bytes(demo.image.value) != picture
+    raw, dead, filt = demo.model.rms_errors_all()
+    assert filt < dead  # the first fresh run: the filter wins
+    demo.controls["new_noise"].click()
+    raw, dead, filt = demo.model.rms_errors_all()
+    assert dead < filt < raw  # the second: dead reckoning is lucky over 150 steps
+    assert f"{100 * dead:.0f} {100 * filt:.0f}" == "11 12"
+
+
+def test_ch0_over_a_long_run_the_filter_stays_bounded_and_dead_reckoning_drifts():
+    """The chapter's longer runs: over 1500 steps dead reckoning drifts to metres, the filter stays
+    within 47 cm at every step, for every seed the demo shows first."""
+    for seed in range(4):
+        run = kf.sim.simulate_line(n_steps=1500, seed=seed)
+        assert rms(run.dead_reckoning - run.truth) > 1.3
+        assert rms(run.mu - run.truth) < 0.15
+        assert np.abs(run.mu - run.truth).max() < 0.48
 
 
 # --------------------------------------------------------------------- chapter 1: histogram hallway
