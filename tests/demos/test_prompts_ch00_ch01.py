@@ -156,6 +156,8 @@ def test_ch1_first_look_leaves_several_equal_peaks():
 
 
 def test_ch1_predict_without_update_shifts_and_blurs():
+    """Press Predict several times without updating: shifted and blurred; the status counts the
+    moves since Reset."""
     demo = kf.demos.hallway(seed=0)
     alternate(demo, 10)
     m = demo.model
@@ -164,16 +166,54 @@ def test_ch1_predict_without_update_shifts_and_blurs():
         demo.controls["predict"].click()
         assert m.belief.max() < before.max()  # blurred
         assert m.belief.argmax() == (before.argmax() + 1) % before.size  # shifted one cell right
+    assert "14 moves since Reset" in demo.renderer.fig.axes[0].texts[0].get_text()
+    demo.controls["reset"].click()
+    demo.controls["predict"].click()
+    assert "1 move since Reset" in demo.renderer.fig.axes[0].texts[0].get_text()
+
+
+def test_ch1_belief_axis_label_is_never_clipped():
+    """Seed 0, motion reliability 0.5, Predict five times: the belief axis labels two decimals and
+    its label stays inside the picture at every frame."""
+    demo = kf.demos.hallway(seed=0)
+    fig = demo.renderer.fig
+    ax = fig.axes[0]
+    demo.controls["motion_reliability"].value = 0.5
+    for _ in range(5):
+        demo.controls["predict"].click()
+        renderer = fig.canvas.get_renderer()
+        label = ax.yaxis.label.get_window_extent(renderer)
+        ticks = [t.get_window_extent(renderer) for t in ax.get_yticklabels() if t.get_text()]
+        assert label.x0 >= 0  # inside the left edge
+        assert all(label.x1 <= t.x0 for t in ticks)  # and clear of the tick labels
+        assert all(len(t.get_text().split(".")[-1]) == 2 for t in ax.get_yticklabels() if t.get_text())
+
+
+def test_ch1_map_labels_the_walls_and_draws_end_walls_only_in_wall_mode():
+    demo = kf.demos.hallway(seed=0)
+    ax_map = demo.renderer.fig.axes[1]
+    assert [t.get_text() for t in ax_map.get_yticklabels()] == ["left wall", "right wall"]
+    ends = [line for line in ax_map.get_lines() if np.ptp(line.get_xdata()) == 0 and len(line.get_xdata()) == 2]
+    assert len(ends) == 2 and not any(line.get_visible() for line in ends)  # a loop has no end walls
+    demo.controls["boundary"].value = "wall"
+    assert all(line.get_visible() for line in ends)
+    assert "loop corridor" not in demo.children[0].value
 
 
 def test_ch1_coin_flip_sensor_changes_nothing():
+    """Set sensor reliability to 0.5 (the orange bars are redrawn at once and the status says they are
+    not used yet; the belief stays) and press Update: the likelihood is flat, the belief unchanged."""
     demo = kf.demos.hallway(seed=0)
     alternate(demo, 3)
-    demo.controls["sensor_reliability"].value = 0.5
     before = demo.model.belief.copy()
+    demo.controls["sensor_reliability"].value = 0.5
+    np.testing.assert_allclose(demo.model.belief, before)  # the slider alone leaves the bars alone
+    status = demo.renderer.fig.axes[0].texts[0].get_text()
+    assert "not used yet" in status
     demo.controls["update"].click()
     np.testing.assert_allclose(demo.model.likelihood, demo.model.likelihood[0])  # flat
     np.testing.assert_allclose(demo.model.belief, before)
+    assert "not used yet" not in demo.renderer.fig.axes[0].texts[0].get_text()
 
 
 def test_ch1_perfect_motion_only_shifts():
@@ -204,6 +244,8 @@ def test_ch1_walls_pile_the_belief_into_the_last_cell():
         demo.controls["predict"].click()
     belief = demo.model.belief
     assert belief.argmax() == belief.size - 1 and belief[-1] > 0.5
+    assert f"{belief[-1]:.0%}" == "57%"  # Question 2's number for the demo's seed
+    assert demo.controls["reset"].tooltip == "Flat belief and a first look"
     loop = kf.demos.hallway(seed=0)
     for _ in range(10):
         loop.controls["predict"].click()
