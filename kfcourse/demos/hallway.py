@@ -5,6 +5,7 @@ from __future__ import annotations
 import ipywidgets as widgets
 import numpy as np
 from matplotlib.patches import Rectangle
+from matplotlib.ticker import FormatStrFormatter
 
 from ..filters.bayes import bayes_predict, bayes_update
 from ..plots import palette
@@ -71,7 +72,13 @@ class HallwayModel:
         self.saw_door = read_door(self.true_cell, self.doors, self.sensor_reliability, self.rng)
         self.likelihood = door_likelihood(self.doors, self.saw_door, self.sensor_reliability)
         self.belief, self.eta = bayes_update(self.belief, self.likelihood, return_eta=True)
+        self.used_reliability = self.sensor_reliability
         self.phase = "updated"
+
+    def likelihood_is_stale(self) -> bool:
+        """True once the sensor slider has moved since the last Update: the orange bars then show the
+        last reading at the new reliability, which the belief has not used yet."""
+        return self.sensor_reliability != self.used_reliability
 
     def set_motion_reliability(self, p: float) -> None:
         self.motion_reliability = p
@@ -99,17 +106,20 @@ def hallway(seed: int = 0) -> Demo:
     ax.set_xlim(-0.6, N_CELLS - 0.4)
     ax.set_ylim(0, 1.0)
     ax.set_ylabel("belief  bel(x)")
+    ax.yaxis.set_major_formatter(FormatStrFormatter("%.2f"))  # labels of one width: the layout, found once, fits all
     bars = belief_bars(ax, model.belief)
     status = ax.text(0.99, 0.97, "", transform=ax.transAxes, ha="right", va="top", fontsize=10)
     setup = ax.text(0.01, 0.97, "", transform=ax.transAxes, ha="left", va="top", fontsize=9, color=palette.INK)
     # The hallway map: the upper wall is on the robot's left (it drives right), the lower wall on its right.
     ax_map.set_ylim(0, 1)
-    ax_map.set_yticks([])
+    ax_map.set_yticks([0.9, 0.1], ["left wall", "right wall"], fontsize=8)
+    ax_map.tick_params(axis="y", length=0)
     ax_map.grid(False)
     for side, y in ((0, 0.8), (1, 0.0)):
         ax_map.axhline(y + 0.1, color=palette.INK, lw=1.2, zorder=1)
         for c in cells[model.doors[side]]:
             ax_map.add_patch(Rectangle((c - 0.35, y), 0.7, 0.2, color=DOOR_COLOUR, lw=0, zorder=2))
+    end_walls = [ax_map.axvline(x, color=palette.INK, lw=4, zorder=2) for x in (-0.5, N_CELLS - 0.5)]
     (robot,) = ax_map.plot([model.true_cell], [0.5], marker=">", ms=13, color=palette.TRUTH, zorder=3)
     robot.set_markeredgecolor("#666666")
     ax_lik.set_ylim(0, 1.05)
@@ -117,7 +127,7 @@ def hallway(seed: int = 0) -> Demo:
     ax_lik.set_xlabel("cell   (brown: doors on the left and right wall; grey arrow: the true robot)")
     ax_lik.set_xticks(cells)
     lik_bars = belief_bars(ax_lik, model.likelihood, color=palette.MEASUREMENT)
-    dynamic = [*bars, robot, status, setup, *lik_bars]
+    dynamic = [*bars, robot, status, setup, *lik_bars, *end_walls]
     renderer = FigureRenderer(fig, dynamic)
 
     def draw() -> None:
@@ -130,29 +140,35 @@ def hallway(seed: int = 0) -> Demo:
         for bar in bars:
             bar.set_color(colour)
         robot.set_data([model.true_cell], [0.5])
+        for wall in end_walls:  # the corridor's ends: walls, or open on a loop
+            wall.set_visible(model.boundary == "wall")
         update_belief_bars(lik_bars, model.likelihood)
         for bar in lik_bars:
             bar.set_alpha(0.35 if model.phase == "predicted" else 1.0)
         left, right = ("door" if seen else "no door" for seen in model.saw_door)
         if model.phase == "predicted":
-            text = rf"after Predict (move right ×{model.steps}): $\overline{{bel}}$ is shifted and blurred"
+            moves = f"{model.steps} move{'s' if model.steps != 1 else ''} since Reset"
+            text = rf"after Predict ({moves}): $\overline{{bel}}$ is shifted and blurred"
         else:
             text = f"after Update: left “{left}”, right “{right}”, η = {model.eta:.2f}"
+            if model.likelihood_is_stale():
+                text = f"{text}\norange: at the new reliability, not used yet"
         status.set_text(f"{text}\nΣ bel = {model.belief.sum():.3f}")
         k = motion_kernel(model.motion_reliability)
         ends = "loop (wrap)" if model.boundary == "wrap" else "walls"
         setup.set_text(
             f"motion: one cell right {k[1]:.2f}, stall {k[0]:.2f}\n"
-            f"each wall read right {model.sensor_reliability:.2f} of the time; ends: {ends}"
+            f"each wall read right {model.sensor_reliability:.2f} of the time\nends: {ends}"
         )
 
     boundary = widgets.ToggleButtons(options=["wrap", "wall"], value=model.boundary, description="ends:")
     boundary.style.button_width = "60px"
     caption = (
-        f"<b>Histogram hallway.</b> Bars: the belief bel(x) over a loop corridor of {N_CELLS} cells "
+        f"<b>Histogram hallway.</b> Bars: the belief bel(x) over a corridor of {N_CELLS} cells "
         "(purple after <i>Predict</i>, teal after <i>Update</i>); brown: doors on the left and right wall; "
         "orange: the door sensor's likelihood p(z | x); the grey arrow is the true robot. "
-        "Sliders set how reliable motion and sensing are; <i>ends</i> chooses a loop or walls."
+        "Sliders set how reliable motion and sensing are; <i>ends</i> chooses a loop (wrap) "
+        "or end walls (drawn as thick black bars at both ends of the map)."
     )
     return Demo(
         name="hallway",
@@ -163,7 +179,7 @@ def hallway(seed: int = 0) -> Demo:
         controls={
             "predict": (button("Predict", icon="arrow-right", tooltip="Move one cell right"), model.predict),
             "update": (button("Update", icon="eye", tooltip="Read the door sensor on both walls"), model.update),
-            "reset": (button("Reset", icon="undo", tooltip="Flat belief, start again"), model.reset),
+            "reset": (button("Reset", icon="undo", tooltip="Flat belief and a first look"), model.reset),
             "motion_reliability": (
                 slider(widgets.FloatSlider, "motion reliability", MOTION_RELIABILITY, 0.5, 1.0, 0.01),
                 model.set_motion_reliability,

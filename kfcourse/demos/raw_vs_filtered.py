@@ -6,7 +6,7 @@ import ipywidgets as widgets
 import numpy as np
 
 from ..plots import palette
-from ..plots.style import FigureRenderer, new_figure
+from ..plots.style import FigureRenderer, new_figure, nice_limit
 from ..sim.line import simulate_line
 from ._base import Demo, button, slider
 
@@ -36,6 +36,19 @@ class RawVsFiltered:
         r = self.run
         return np.abs(r.z - r.truth), np.abs(r.dead_reckoning - r.truth), np.abs(r.mu - r.truth)
 
+    def view_limits(self) -> tuple[tuple[float, float], float]:
+        """Axis limits that hold the whole run: the position axis (m) and the top of the error axis (m).
+
+        The margins are powers of two (:func:`nice_limit`), so they change only now and then as the
+        sensor-noise slider moves, and every reading and every error stays in view.
+        """
+        r = self.run
+        lo, hi = float(r.truth.min()), float(r.truth.max())
+        seen = np.concatenate([r.z, r.mu, r.dead_reckoning])
+        margin = nice_limit(max(0.25 * (hi - lo), lo - seen.min(), seen.max() - hi))  # m beyond the truth's range
+        top = nice_limit(1.05 * max(e.max() for e in self.errors()))
+        return (lo - margin, hi + margin), top
+
     def rms_errors(self) -> tuple[float, float]:
         """RMS error up to the current frame of the raw readings and the filter."""
         raw, _, filt = self.rms_errors_all()
@@ -58,10 +71,7 @@ def raw_vs_filtered(seed: int = 0) -> Demo:
     """
     model = RawVsFiltered(seed)
     fig, (ax, ax_err) = new_figure(8.0, 4.6, nrows=2, sharex=True, gridspec_kw={"height_ratios": [3, 2]})
-    r = model.run
-    span = r.truth.max() - r.truth.min()
     ax.set_xlim(0, N_STEPS - 1)
-    ax.set_ylim(r.truth.min() - 0.25 * span, r.truth.max() + 0.25 * span)
     ax.set_ylabel("position (m)")
     (truth,) = ax.plot([], [], color=palette.TRUTH, lw=5, alpha=0.55, label="truth (unknown)")
     pings = ax.scatter([], [], s=14, color=palette.MEASUREMENT, alpha=0.75, label="sensor pings", zorder=3)
@@ -93,8 +103,9 @@ def raw_vs_filtered(seed: int = 0) -> Demo:
         est.set_data(t, run.mu[:k])
         robot.set_data([t[-1]], [run.mu[k - 1]])
         e_raw, e_dr, e_est = model.errors()
-        top = 0.5 * np.ceil(max(2.5 * run.sensor_std, 1.2 * e_dr.max(), 1.2 * e_est.max()) / 0.5)  # whole run
-        if ax_err.get_ylim()[1] != top:
+        view, top = model.view_limits()
+        if ax.get_ylim() != view or ax_err.get_ylim()[1] != top:  # changes rarely: only then redraw the axes
+            ax.set_ylim(*view)
             ax_err.set_ylim(0, top)
             renderer.invalidate()
         err_raw.set_data(t, e_raw[:k])

@@ -21,6 +21,7 @@ from .artists import (
     update_gaussian_curve,
     update_robot,
 )
+from .bayes import bayes_cycle_chart
 from .charts import blend_variance_chart, convergence_chart, drift_chart, ellipse_shadow_chart, samples_chart
 from .matrix import predict_update_chart
 from .runs import kf_run_chart
@@ -28,6 +29,7 @@ from .style import FigureRenderer, new_figure
 
 __all__ = [
     "FigureRenderer",
+    "bayes_cycle_chart",
     "beams",
     "belief_bars",
     "blend_variance_chart",

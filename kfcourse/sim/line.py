@@ -37,32 +37,33 @@ def simulate_line(
 ) -> LineRun:
     r"""Drive a robot along a line, read a noisy sensor, and filter with a 1-D KF.
 
-    Truth: :math:`x_t = x_{t-1} + u_t + w_t` with :math:`w_t \sim N(0, \sigma_{step}^2)`
-    and a command :math:`u_t = v \sin(2\pi t / T)`: the robot drives out along
-    the line and back again.  Sensor:
-    :math:`z_t = x_t + \sigma_{sensor} e_t`.  The filter runs :func:`kf_1d_step`
-    with ``R = step_std**2`` and ``Q = sensor_std**2``.  Dead reckoning counts the
-    commands only, :math:`\hat x_t = \sum_{k \le t} u_k`, so its error is the sum of the
-    disturbances and spreads like :math:`\sigma_{step}\sqrt{t}` (chapter 0's drift).
+        Truth: :math:`x_t = x_{t-1} + u_t + w_t` with :math:`w_t \sim N(0, \sigma_{step}^2)`
+        and a command :math:`u_t = v \sin(2\pi t / T)`: the robot drives out along
+        the line and back again.  Sensor:
+        :math:`z_t = x_t + \sigma_{sensor} e_t`.  The filter runs :func:`kf_1d_step`
+        with ``R = step_std**2`` and ``Q = sensor_std**2``, starting from the same known start as
+    dead reckoning with variance ``step_std**2`` (one step's disturbance).  Dead reckoning counts the
+        commands only, :math:`\hat x_t = \sum_{k \le t} u_k`, so its error is the sum of the
+        disturbances and spreads like :math:`\sigma_{step}\sqrt{t}` (chapter 0's drift).
 
-    The standard-normal draws depend only on ``seed`` and ``n_steps``, so changing
-    ``sensor_std`` rescales the same noise: the picture changes smoothly.
+        The standard-normal draws depend only on ``seed`` and ``n_steps``, so changing
+        ``sensor_std`` rescales the same noise: the picture changes smoothly.
 
-    Parameters
-    ----------
-    n_steps : int
-        Number of steps (>= 2).
-    step_std : float
-        Disturbance per step (m), > 0.
-    sensor_std : float
-        Sensor noise (m), > 0.
-    speed : float
-        Largest commanded move per step, ``v`` (m).
-    seed : int
+        Parameters
+        ----------
+        n_steps : int
+            Number of steps (>= 2).
+        step_std : float
+            Disturbance per step (m), > 0.
+        sensor_std : float
+            Sensor noise (m), > 0.
+        speed : float
+            Largest commanded move per step, ``v`` (m).
+        seed : int
 
-    Returns
-    -------
-    LineRun
+        Returns
+        -------
+        LineRun
     """
     if isinstance(n_steps, bool) or not isinstance(n_steps, (int, np.integer)) or n_steps < 2:
         raise ValueError(f"n_steps must be a whole number >= 2, got {n_steps!r}")
@@ -78,12 +79,12 @@ def simulate_line(
     z = truth + sensor_std * e
     mu = np.empty(n_steps)
     var = np.empty(n_steps)
-    m, s2 = z[0], sensor_std**2  # start from the first reading
+    dead_reckoning = np.cumsum(u)  # m: x_t = x_{t-1} + u_t from the known start, never corrected
+    m, s2 = dead_reckoning[0], step_std**2  # the same known start, give or take one step's disturbance
     mu[0], var[0] = m, s2
     for k in range(1, n_steps):
         m, s2 = kf_1d_cycle(m, s2, u[k], z[k], R=step_std**2, Q=sensor_std**2)[4:]
         mu[k], var[k] = m, s2
-    dead_reckoning = np.cumsum(u)  # m: x_t = x_{t-1} + u_t from the known start, never corrected
     return LineRun(
         _frozen(t),
         _frozen(u),

@@ -28,6 +28,8 @@ def test_ch0_first_frame_shows_the_whole_run_and_the_filter_beating_both_witness
     assert filt < 0.5 * raw and filt < 0.6 * dead
     e_raw, e_dead, e_filt = m.errors()
     n = e_dead.size
+    lowest = np.mean((e_filt < e_raw) & (e_filt < e_dead))  # "lowest most of the time (three steps in four)"
+    assert 0.5 < lowest < 1 and round(lowest, 2) == 0.75
     assert rms(e_dead[: n // 10]) < 0.5 * rms(e_dead[-n // 3 :])  # dead reckoning drifts away
     ax_err = demo.renderer.fig.axes[1]
     drawn = [line.get_ydata() for line in ax_err.get_lines()]
@@ -47,10 +49,12 @@ def test_ch0_run_replays_time_from_the_start():
 
 
 def test_ch0_sensor_noise_up_raw_explodes_filter_holds():
-    """Drag sensor noise up towards 3 m: the raw RMS grows with it, the filtered RMS stays well
-    below it (about 3.2 m against 0.66 m at 3 m), and dead reckoning does not change."""
+    """Drag sensor noise up to 3 m: the view widens to hold the pings, the raw RMS grows with the
+    slider (about 3.2 m at 3 m), the filter stays within tens of centimetres (0.37 m), about as good
+    as dead reckoning (0.34 m), which does not change."""
     demo = kf.demos.raw_vs_filtered(seed=0)
     noise = demo.controls["sensor_noise"]
+    ax, ax_err = demo.renderer.fig.axes[:2]
     raws, filts, deads = [], [], []
     for value in (0.4, 1.0, 2.0, noise.max):
         noise.value = value
@@ -59,10 +63,14 @@ def test_ch0_sensor_noise_up_raw_explodes_filter_holds():
         filts.append(filt)
         deads.append(dead)
         assert filt < raw
+        run = demo.model.run
+        lo, hi = ax.get_ylim()
+        assert lo <= run.z.min() and run.z.max() <= hi  # every ping is in view ...
+        assert max(e.max() for e in demo.model.errors()) <= ax_err.get_ylim()[1]  # ... and every error
     assert np.all(np.diff(raws) > 0)  # the raw trace gets worse with every step of the slider
     assert noise.max == 3.0
-    assert round(raws[-1], 1) == 3.2 and round(filts[-1], 2) == 0.66
-    assert filts[-1] < raws[-1] / 4
+    assert round(raws[-1], 1) == 3.2 and round(filts[-1], 2) == 0.37 and round(deads[-1], 2) == 0.34
+    assert filts[-1] < 0.5 and abs(filts[-1] - deads[-1]) < 0.1  # tens of cm, close to dead reckoning
     assert deads == pytest.approx([deads[0]] * 4)  # dead reckoning never looks at the sensor
 
 
@@ -78,16 +86,37 @@ def test_ch0_sensor_noise_down_filter_follows_the_sensor():
     assert rms(demo.model.run.mu - demo.model.run.z) > 0.2  # at the default it does not just copy them
 
 
-def test_ch0_new_noise_draws_a_fresh_run():
+def test_ch0_new_noise_draws_a_fresh_run_and_the_second_is_lucky_for_dead_reckoning():
+    """After the previous prompt (sensor noise at 0.05 m), set it back to 0.4 m and press New noise:
+    a fresh run; press it a second time and dead reckoning (11 cm RMS) beats the filter (12 cm)."""
     demo = kf.demos.raw_vs_filtered(seed=0)
+    noise = demo.controls["sensor_noise"]
+    noise.value = 0.05
+    noise.value = 0.4
     before = demo.model.run
     picture = bytes(demo.image.value)
     demo.controls["new_noise"].click()
     after = demo.model.run
     assert not np.allclose(after.z, before.z)
     assert not np.allclose(after.truth, before.truth)
-    assert after.sensor_std == before.sensor_std
+    assert after.sensor_std == before.sensor_std == 0.4
     assert bytes(demo.image.value) != picture
+    raw, dead, filt = demo.model.rms_errors_all()
+    assert filt < dead  # the first fresh run: the filter wins
+    demo.controls["new_noise"].click()
+    raw, dead, filt = demo.model.rms_errors_all()
+    assert dead < filt < raw  # the second: dead reckoning is lucky over 150 steps
+    assert f"{100 * dead:.0f} {100 * filt:.0f}" == "11 12"
+
+
+def test_ch0_over_a_long_run_the_filter_stays_bounded_and_dead_reckoning_drifts():
+    """The chapter's longer runs: over 1500 steps dead reckoning drifts to metres, the filter stays
+    within 47 cm at every step, for every seed the demo shows first."""
+    for seed in range(4):
+        run = kf.sim.simulate_line(n_steps=1500, seed=seed)
+        assert rms(run.dead_reckoning - run.truth) > 1.3
+        assert rms(run.mu - run.truth) < 0.15
+        assert np.abs(run.mu - run.truth).max() < 0.48
 
 
 # --------------------------------------------------------------------- chapter 1: histogram hallway
@@ -127,6 +156,8 @@ def test_ch1_first_look_leaves_several_equal_peaks():
 
 
 def test_ch1_predict_without_update_shifts_and_blurs():
+    """Press Predict several times without updating: shifted and blurred; the status counts the
+    moves since Reset."""
     demo = kf.demos.hallway(seed=0)
     alternate(demo, 10)
     m = demo.model
@@ -135,16 +166,54 @@ def test_ch1_predict_without_update_shifts_and_blurs():
         demo.controls["predict"].click()
         assert m.belief.max() < before.max()  # blurred
         assert m.belief.argmax() == (before.argmax() + 1) % before.size  # shifted one cell right
+    assert "14 moves since Reset" in demo.renderer.fig.axes[0].texts[0].get_text()
+    demo.controls["reset"].click()
+    demo.controls["predict"].click()
+    assert "1 move since Reset" in demo.renderer.fig.axes[0].texts[0].get_text()
+
+
+def test_ch1_belief_axis_label_is_never_clipped():
+    """Seed 0, motion reliability 0.5, Predict five times: the belief axis labels two decimals and
+    its label stays inside the picture at every frame."""
+    demo = kf.demos.hallway(seed=0)
+    fig = demo.renderer.fig
+    ax = fig.axes[0]
+    demo.controls["motion_reliability"].value = 0.5
+    for _ in range(5):
+        demo.controls["predict"].click()
+        renderer = fig.canvas.get_renderer()
+        label = ax.yaxis.label.get_window_extent(renderer)
+        ticks = [t.get_window_extent(renderer) for t in ax.get_yticklabels() if t.get_text()]
+        assert label.x0 >= 0  # inside the left edge
+        assert all(label.x1 <= t.x0 for t in ticks)  # and clear of the tick labels
+        assert all(len(t.get_text().split(".")[-1]) == 2 for t in ax.get_yticklabels() if t.get_text())
+
+
+def test_ch1_map_labels_the_walls_and_draws_end_walls_only_in_wall_mode():
+    demo = kf.demos.hallway(seed=0)
+    ax_map = demo.renderer.fig.axes[1]
+    assert [t.get_text() for t in ax_map.get_yticklabels()] == ["left wall", "right wall"]
+    ends = [line for line in ax_map.get_lines() if np.ptp(line.get_xdata()) == 0 and len(line.get_xdata()) == 2]
+    assert len(ends) == 2 and not any(line.get_visible() for line in ends)  # a loop has no end walls
+    demo.controls["boundary"].value = "wall"
+    assert all(line.get_visible() for line in ends)
+    assert "loop corridor" not in demo.children[0].value
 
 
 def test_ch1_coin_flip_sensor_changes_nothing():
+    """Set sensor reliability to 0.5 (the orange bars are redrawn at once and the status says they are
+    not used yet; the belief stays) and press Update: the likelihood is flat, the belief unchanged."""
     demo = kf.demos.hallway(seed=0)
     alternate(demo, 3)
-    demo.controls["sensor_reliability"].value = 0.5
     before = demo.model.belief.copy()
+    demo.controls["sensor_reliability"].value = 0.5
+    np.testing.assert_allclose(demo.model.belief, before)  # the slider alone leaves the bars alone
+    status = demo.renderer.fig.axes[0].texts[0].get_text()
+    assert "not used yet" in status
     demo.controls["update"].click()
     np.testing.assert_allclose(demo.model.likelihood, demo.model.likelihood[0])  # flat
     np.testing.assert_allclose(demo.model.belief, before)
+    assert "not used yet" not in demo.renderer.fig.axes[0].texts[0].get_text()
 
 
 def test_ch1_perfect_motion_only_shifts():
@@ -175,6 +244,8 @@ def test_ch1_walls_pile_the_belief_into_the_last_cell():
         demo.controls["predict"].click()
     belief = demo.model.belief
     assert belief.argmax() == belief.size - 1 and belief[-1] > 0.5
+    assert f"{belief[-1]:.0%}" == "57%"  # Question 2's number for the demo's seed
+    assert demo.controls["reset"].tooltip == "Flat belief and a first look"
     loop = kf.demos.hallway(seed=0)
     for _ in range(10):
         loop.controls["predict"].click()

@@ -15,7 +15,7 @@ def rms(a) -> float:
 def test_chapter0_numbers_are_unchanged():
     run = kf.sim.simulate_line(seed=0)
     assert round(100 * rms(run.z - run.truth), 1) == 42.9  # cm, trusting each reading
-    assert round(100 * rms(run.mu - run.truth), 1) == 16.1  # cm, filtered
+    assert round(100 * rms(run.mu - run.truth), 1) == 15.5  # cm, filtered, from the known start
     assert round(float(run.mu[-1]), 2) == 0.39
     assert round(float(run.truth[-1]), 2) == 0.47
 
@@ -61,3 +61,9 @@ def test_at_the_default_noise_the_filter_beats_both_witnesses_by_the_end():
     assert filt < 0.5 * min(dr, raw)
     first_tenth = slice(1, run.t.size // 10)
     assert rms((run.dead_reckoning - run.truth)[first_tenth]) < 0.5 * dr  # it drifts: small at first, large later
+
+
+def test_filter_starts_from_the_same_known_start_as_dead_reckoning():
+    run = kf.sim.simulate_line(seed=0, sensor_std=3.0)
+    assert run.mu[0] == run.dead_reckoning[0] == run.truth[0]
+    assert run.var[0] == pytest.approx(run.step_std**2)  # one step's disturbance, not the sensor's
