@@ -133,6 +133,8 @@ def _covariance_alone(a: np.ndarray, name: str) -> None:
     """Check one finite square matrix: symmetric and positive semi-definite, each up to rounding."""
     if not _exactly_symmetric(a) and np.abs(a - a.T).max() > _SYM_RTOL * np.abs(a).max():
         raise ValueError(f"{name} must be a symmetric covariance matrix, got {a.tolist()}")
+    if _positive_definite(a):
+        return
     lowest = np.linalg.eigvalsh(a)[0]  # semi-definite is fine: look at the smallest eigenvalue
     if lowest < -_PSD_RTOL * np.abs(a).max():
         raise ValueError(f"{name} must be positive semi-definite (a covariance), but has eigenvalue {lowest:.3g}")
