@@ -18,15 +18,23 @@ _PSD_RTOL = 1e-9  # relative negative eigenvalue tolerated in a covariance
 _SUM_ATOL = 1e-6  # how far a probability vector may be from summing to 1
 
 
+def all_finite(a: np.ndarray) -> bool:
+    """Whether every element of the float array ``a`` is finite (no NaN, no inf)."""
+    if a.size > 100:  # a long array: look at each element
+        return bool(np.isfinite(a).all())
+    # A short one (a filter's vectors and matrices): a sum is finite only if every term is
+    # (NaN and inf carry through), and Python sums a short list faster than numpy starts up.
+    # A non-finite sum of finite terms is an overflow, so then look at each element.
+    return math.isfinite(sum(a.ravel().tolist())) or bool(np.isfinite(a).all())
+
+
 def finite(x, name: str) -> np.ndarray:
     """Return ``x`` as a float array, rejecting NaN, inf and non-numbers."""
     try:
         a = np.asarray(x, dtype=float)
     except (TypeError, ValueError):
         raise ValueError(f"{name} must be numeric, got {x!r}") from None
-    # A sum is finite only if every term is (NaN and inf propagate); a non-finite
-    # sum of finite terms is an overflow, so then look at each element.
-    if not math.isfinite(a.sum()) and not np.isfinite(a).all():
+    if not all_finite(a):
         raise ValueError(f"{name} must be finite (no NaN or inf), got {x!r}")
     return a
 
@@ -97,35 +105,97 @@ def matrix(x, name: str, rows: int | None = None, cols: int | None = None) -> np
     return a
 
 
-def covariance(x, name: str, n: int | None = None) -> np.ndarray:
-    """A finite, symmetric, positive semi-definite ``(n, n)`` matrix."""
+def _square(x, name: str, n: int | None) -> np.ndarray:
+    """A finite, non-empty, square ``(n, n)`` float array."""
     a = matrix(x, name, n, n)
     if a.size == 0:
         raise ValueError(f"{name} must not be empty")
     if a.shape[0] != a.shape[1]:
         raise ValueError(f"{name} must be a square covariance matrix, got shape {a.shape}")
-    if a.tolist() != a.T.tolist():  # not exactly symmetric (a list compare is the cheapest test): allow rounding
-        if np.abs(a - a.T).max() > _SYM_RTOL * np.abs(a).max():
-            raise ValueError(f"{name} must be a symmetric covariance matrix, got {a.tolist()}")
-    try:
-        np.linalg.cholesky(a)  # succeeds only for a positive definite matrix: the common case
-    except np.linalg.LinAlgError:
-        lowest = np.linalg.eigvalsh(a)[0]  # semi-definite is fine: look at the smallest eigenvalue
-        if lowest < -_PSD_RTOL * np.abs(a).max():
-            raise ValueError(
-                f"{name} must be positive semi-definite (a covariance), but has eigenvalue {lowest:.3g}"
-            ) from None
     return a
+
+
+def _exactly_symmetric(a: np.ndarray) -> bool:
+    """Whether ``a`` equals its transpose: the same bytes read by rows as by columns."""
+    return a.tobytes() == a.T.tobytes()
+
+
+def _positive_definite(a: np.ndarray) -> bool:
+    """Whether the symmetric matrix ``a`` is positive definite: it has a Cholesky factor."""
+    try:
+        np.linalg.cholesky(a)
+    except np.linalg.LinAlgError:
+        return False
+    return True
+
+
+def _covariance_alone(a: np.ndarray, name: str) -> None:
+    """Check one finite square matrix: symmetric and positive semi-definite, each up to rounding."""
+    if not _exactly_symmetric(a) and np.abs(a - a.T).max() > _SYM_RTOL * np.abs(a).max():
+        raise ValueError(f"{name} must be a symmetric covariance matrix, got {a.tolist()}")
+    if _positive_definite(a):
+        return
+    lowest = np.linalg.eigvalsh(a)[0]  # semi-definite is fine: look at the smallest eigenvalue
+    if lowest < -_PSD_RTOL * np.abs(a).max():
+        raise ValueError(f"{name} must be positive semi-definite (a covariance), but has eigenvalue {lowest:.3g}")
+
+
+def block_diagonal(blocks: list[np.ndarray]) -> np.ndarray:
+    r"""The square matrices :math:`A_1, A_2, \dots` down the diagonal, zeros elsewhere."""
+    if len(blocks) == 1:
+        return blocks[0]
+    size = sum(len(A) for A in blocks)
+    M = np.zeros((size, size))
+    start = 0
+    for A in blocks:
+        end = start + len(A)
+        M[start:end, start:end] = A
+        start = end
+    return M
+
+
+def covariances(*named: tuple[object, str, int | None]) -> list[np.ndarray]:
+    r"""Check several covariance matrices at once, each given as ``(x, name, n)``.
+
+    Each must be a finite, symmetric, positive semi-definite ``(n, n)`` matrix
+    (``n=None``: any size).  Shape and finiteness are checked one by one; symmetry
+    and definiteness together, on the block-diagonal matrix
+
+    .. math:: M = \begin{pmatrix} A_1 & & \\ & A_2 & \\ & & \ddots \end{pmatrix}
+
+    (zeros off the blocks).  :math:`M` is symmetric exactly when every block is,
+    and its eigenvalues are those of all the blocks together, so :math:`M` is
+    positive definite exactly when every block is -- which one Cholesky
+    factorisation of :math:`M` tells, as it exists only for a positive definite
+    matrix.  Only when that fails is each matrix checked on its own, to name the
+    one at fault or to accept it: a singular (semi-definite) covariance is
+    allowed, and so are an asymmetry or a negative eigenvalue of rounding size.
+
+    Returns
+    -------
+    list of ndarray
+        The matrices as float arrays, in the order given.
+    """
+    mats = [_square(x, name, n) for x, name, n in named]
+    M = block_diagonal(mats)
+    if not (_exactly_symmetric(M) and _positive_definite(M)):
+        for a, (_, name, _) in zip(mats, named, strict=True):
+            _covariance_alone(a, name)
+    return mats
+
+
+def covariance(x, name: str, n: int | None = None) -> np.ndarray:
+    """A finite, symmetric, positive semi-definite ``(n, n)`` matrix."""
+    return covariances((x, name, n))[0]
 
 
 def update_inputs(mu_bar, Sig_bar, z, Q) -> tuple[np.ndarray, np.ndarray, np.ndarray, np.ndarray]:
     """The inputs every measurement update shares: the predicted belief
     ``mu_bar`` (n,), ``Sig_bar`` (n, n), the reading ``z`` (k,) and its noise
-    covariance ``Q`` (k, k)."""
+    covariance ``Q`` (k, k); the two covariances are checked together."""
     mu_bar = vector(mu_bar, "mu_bar")
-    Sig_bar = covariance(Sig_bar, "Sig_bar", mu_bar.size)
     z = vector(z, "z")
-    Q = covariance(Q, "Q", z.size)
+    Sig_bar, Q = covariances((Sig_bar, "Sig_bar", mu_bar.size), (Q, "Q", z.size))
     return mu_bar, Sig_bar, z, Q
 
 

@@ -41,8 +41,7 @@ def ekf_predict(mu, Sig, u, g: Callable, G: Callable, R) -> tuple[np.ndarray, np
     """
     mu = v.vector(mu, "mu")
     n = mu.size
-    Sig = v.covariance(Sig, "Sig", n)
-    R = v.covariance(R, "R", n)
+    Sig, R = v.covariances((Sig, "Sig", n), (R, "R", n))  # both at once
     g, G = v.function(g, "g"), v.function(G, "G")
     mu_bar = v.output(g(mu, u), "g", n)  # mu_bar = g(mu, u): the mean rides the real curve
     Gt = v.output_matrix(G(mu, u), "G", n, n)  # G at the previous mean

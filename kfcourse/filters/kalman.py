@@ -240,19 +240,29 @@ def steady_state_1d(R, Q, a=1.0, c=1.0) -> tuple[float, float, float]:
 
 
 # ---------------------------------------------------------------- matrix form
-def _check_predict_inputs(mu, Sig, u, F, B, R):
+def _check_inputs(mu, Sig, u, F, B, R, z=None, H=None, Q=None):
+    """Check the inputs of a predict step, and of the update after it when ``z`` is given.
+
+    Every input is checked once, up front; the covariances (Sig, R and, with a
+    measurement, Q) together, by one factorisation (see ``_validate.covariances``).
+    Returns ``mu, Sig, u, F, B, R, z, H, Q`` as float arrays (``u, B`` stay None
+    with no control, ``z, H, Q`` with no measurement).
+    """
     mu = v.vector(mu, "mu")
     n = mu.size
-    Sig = v.covariance(Sig, "Sig", n)
     F = v.matrix(F, "F", n, n)
-    R = v.covariance(R, "R", n)
-    if B is None and u is None:
-        return mu, Sig, None, F, None, R
-    if B is None or u is None:
+    if (B is None) != (u is None):
         raise ValueError("u and B must be given together (or both None for no control)")
-    u = v.vector(u, "u")
-    B = v.matrix(B, "B", n, u.size)
-    return mu, Sig, u, F, B, R
+    if u is not None:
+        u = v.vector(u, "u")
+        B = v.matrix(B, "B", n, u.size)
+    if z is None:
+        Sig, R = v.covariances((Sig, "Sig", n), (R, "R", n))
+        return mu, Sig, u, F, B, R, None, None, None
+    z = v.vector(z, "z")
+    H = v.matrix(H, "H", z.size, n)
+    Sig, R, Q = v.covariances((Sig, "Sig", n), (R, "R", n), (Q, "Q", z.size))
+    return mu, Sig, u, F, B, R, z, H, Q
 
 
 # The helpers below take checked arrays and write A.dot(B) for the product A @ B
@@ -298,7 +308,8 @@ def kf_predict(mu, Sig, u, F, B, R) -> tuple[np.ndarray, np.ndarray]:
     -------
     (mu_bar, Sig_bar) : shapes (n,), (n, n)
     """
-    mu_bar, Sig_bar = _predict(*_check_predict_inputs(mu, Sig, u, F, B, R))
+    mu, Sig, u, F, B, R, _, _, _ = _check_inputs(mu, Sig, u, F, B, R)
+    mu_bar, Sig_bar = _predict(mu, Sig, u, F, B, R)
     return mu_bar, symmetric(Sig_bar)
 
 
@@ -319,9 +330,9 @@ def kf_gain(Sig_bar, H, Q) -> tuple[np.ndarray, np.ndarray]:
     -------
     (S, K) : shapes (k, k), (n, k)
     """
-    Sig_bar = v.covariance(Sig_bar, "Sig_bar")
+    Sig_bar = v.matrix(Sig_bar, "Sig_bar")  # its size, for H; checked in full with Q below
     H = v.matrix(H, "H", None, Sig_bar.shape[0])
-    Q = v.covariance(Q, "Q", H.shape[0])
+    Sig_bar, Q = v.covariances((Sig_bar, "Sig_bar", None), (Q, "Q", H.shape[0]))
     S = innovation_covariance(Sig_bar, H, Q)
     return S, gain(Sig_bar @ H.T, S)
 
@@ -367,10 +378,8 @@ def kf_step(mu, Sig, u, z, F, B, H, R, Q) -> tuple[np.ndarray, np.ndarray]:
     -------
     (mu, Sig) : shapes (n,), (n, n)
     """
-    mu_bar, Sig_bar = _predict(*_check_predict_inputs(mu, Sig, u, F, B, R))
+    mu, Sig, u, F, B, R, z, H, Q = _check_inputs(mu, Sig, u, F, B, R, z, H, Q)
+    mu_bar, Sig_bar = _predict(mu, Sig, u, F, B, R)
     if z is None:
         return mu_bar, symmetric(Sig_bar)
-    z = v.vector(z, "z")
-    H = v.matrix(H, "H", z.size, mu_bar.size)
-    Q = v.covariance(Q, "Q", z.size)
     return _update(mu_bar, Sig_bar, z, H, Q)

@@ -230,8 +230,7 @@ def ukf_predict(
     """
     mu = v.vector(mu, "mu")
     n = mu.size
-    Sig = v.covariance(Sig, "Sig", n)
-    R = v.covariance(R, "R", n)
+    Sig, R = v.covariances((Sig, "Sig", n), (R, "R", n))  # both at once
     g = v.function(g, "g")
     residual, mean = v.optional_function(residual, "residual"), v.optional_function(mean, "mean")
     chi, wm, wc = _sigma_points(mu, Sig, v.scalar(lam, "lam"), v.scalar(beta, "beta"))

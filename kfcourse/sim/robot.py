@@ -67,21 +67,6 @@ class RobotRun:
     seed: int
 
 
-def _std(x, name: str, unit: str) -> float:
-    """A finite standard deviation, >= 0."""
-    s = v.scalar(x, name)
-    if s < 0:
-        raise ValueError(f"{name} is a standard deviation and must be >= 0 ({unit}), got {s}")
-    return s
-
-
-def _positive(x, name: str, unit: str) -> float:
-    s = v.scalar(x, name)
-    if s <= 0:
-        raise ValueError(f"{name} must be > 0 ({unit}), got {s}")
-    return s
-
-
 def _whole(x, name: str, least: int) -> int:
     if isinstance(x, bool) or not isinstance(x, (int, np.integer)) or x < least:
         raise ValueError(f"{name} must be a whole number >= {least}, got {x!r}")
@@ -122,14 +107,14 @@ def loop_controls(
     ndarray, shape (T, 2)
         One control ``[V, omega]`` (m/s, rad/s) per step.
     """
-    radius = _positive(radius, "radius", "m")
+    radius = v.positive(radius, "radius", "a radius", "m")
     length = v.scalar(length, "length")
     width = v.scalar(width, "width")
     for name, side in (("length", length), ("width", width)):
         if side < 2 * radius:
             raise ValueError(f"{name} must be at least 2 radius = {2 * radius} m, got {side}")
-    speed = _positive(speed, "speed", "m/s")
-    dt = _positive(dt, "dt", "s")
+    speed = v.positive(speed, "speed", "a speed", "m/s")
+    dt = v.positive(dt, "dt", "a time step", "s")
     laps = _whole(laps, "laps", 1)
     step = speed * dt  # m driven per step
     n_turn = max(1, round((math.pi / 2) * radius / step))  # steps per quarter circle
@@ -203,7 +188,7 @@ def simulate_robot(
     -------
     RobotRun
     """
-    dt = _positive(dt, "dt", "s")
+    dt = v.positive(dt, "dt", "a time step", "s")
     u = loop_controls(dt=dt) if u is None else v.matrix(u, "u", cols=2)
     if len(u) == 0:
         raise ValueError("u must hold at least one control, got none")
@@ -214,11 +199,11 @@ def simulate_robot(
         m = np.empty((0, 2))  # an empty map: nothing to see
     else:
         m = v.matrix(landmarks, "landmarks", cols=2)
-    sensor_range = _positive(sensor_range, "sensor_range", "m")
-    v_std = _std(v_std, "v_std", "m/s")
-    omega_std = _std(omega_std, "omega_std", "rad/s")
-    range_std = _std(range_std, "range_std", "m")
-    bearing_std = _std(bearing_std, "bearing_std", "rad")
+    sensor_range = v.positive(sensor_range, "sensor_range", "a range", "m")
+    v_std = v.non_negative(v_std, "v_std", "a standard deviation", "m/s")
+    omega_std = v.non_negative(omega_std, "omega_std", "a standard deviation", "rad/s")
+    range_std = v.non_negative(range_std, "range_std", "a standard deviation", "m")
+    bearing_std = v.non_negative(bearing_std, "bearing_std", "a standard deviation", "rad")
     seed = _whole(seed, "seed", 0)
     n_steps, n_marks = len(u), len(m)
 
