@@ -80,6 +80,13 @@ def probability(x, name: str) -> float:
     return p
 
 
+def whole(x, name: str, least: int = 0) -> int:
+    """A whole number (not a bool) ``>= least``: a count of steps, cells, laps, or a seed."""
+    if isinstance(x, bool) or not isinstance(x, (int, np.integer)) or x < least:
+        raise ValueError(f"{name} must be a whole number >= {least}, got {x!r}")
+    return int(x)
+
+
 def vector(x, name: str, n: int | None = None) -> np.ndarray:
     """A finite 1-D array (a scalar becomes length 1), of length ``n`` if given."""
     a = finite(x, name)

@@ -109,8 +109,7 @@ def constant_velocity(dt: float, dim: int = 1) -> tuple[np.ndarray, np.ndarray]:
     (F, H) : shapes (2 dim, 2 dim), (dim, 2 dim)
     """
     dt = v.positive(dt, "dt", "a time step", "s")
-    if isinstance(dim, bool) or not isinstance(dim, (int, np.integer)) or dim < 1:
-        raise ValueError(f"dim must be a whole number >= 1, got {dim!r}")
+    dim = v.whole(dim, "dim", 1)
     eye = np.eye(dim)
     F = np.block([[eye, dt * eye], [np.zeros((dim, dim)), eye]])
     H = np.hstack([eye, np.zeros((dim, dim))])

@@ -9,6 +9,7 @@ from __future__ import annotations
 import numpy as np
 from matplotlib.ticker import MaxNLocator
 
+from .. import _validate as v
 from ..filters.gaussian import gaussian_pdf
 from . import palette
 from .artists import covariance_ellipse
@@ -104,7 +105,7 @@ def blend_variance_chart(var1: float, var2: float):
     -------
     matplotlib.figure.Figure
     """
-    var1, var2 = _positive(var1, "var1"), _positive(var2, "var2")
+    var1, var2 = v.positive(var1, "var1", "a variance"), v.positive(var2, "var2", "a variance")
     w = np.linspace(0.0, 1.0, 401)
     var_blend = (1 - w) ** 2 * var1 + w**2 * var2  # Var(w) = (1 - w)^2 var1 + w^2 var2
     K = var1 / (var1 + var2)  # the weight with the smallest variance
@@ -146,7 +147,7 @@ def ellipse_shadow_chart(Sig, nsig: float = 1.0):
     Sig = np.asarray(Sig, float)
     if Sig.shape != (2, 2):
         raise ValueError(f"Sig must have shape (2, 2), got {Sig.shape}")
-    k = _positive(nsig, "nsig")
+    k = v.positive(nsig, "nsig", "a number of standard deviations")
     fig, ax = new_figure(4.6, 3.4)
     covariance_ellipse(ax, (0.0, 0.0), Sig, k, palette.ESTIMATE)  # checks Sig (finite, symmetric, PSD)
     lam, V = np.linalg.eigh(Sig)  # Σ = V diag(lam) V^T, lam ascending
@@ -178,14 +179,3 @@ def ellipse_shadow_chart(Sig, nsig: float = 1.0):
     ax.set_ylabel(f"y   (shadow ±{sy:.3g})")
     ax.legend(loc="lower right", fontsize=8)
     return fig
-
-
-def _positive(x, name: str) -> float:
-    """A finite number > 0, or a ValueError naming the argument."""
-    try:
-        value = float(x)
-    except (TypeError, ValueError):
-        raise ValueError(f"{name} must be a positive number, got {x!r}") from None
-    if not np.isfinite(value) or value <= 0:
-        raise ValueError(f"{name} must be a finite number > 0, got {x!r}")
-    return value

@@ -15,6 +15,7 @@ import numpy as np
 
 from .. import _validate as v
 from ..filters.bayes import BOUNDARIES, bayes_predict, bayes_update
+from .records import read_only
 
 N_CELLS = 12
 LEFT_DOORS = (0, 3, 5, 8, 10)  #: cells with a door on the robot's left (drawn on the upper wall)
@@ -33,7 +34,7 @@ def hallway_doors(n_cells: int = N_CELLS, left=LEFT_DOORS, right=RIGHT_DOORS) ->
     -------
     ndarray of bool, shape (2, n_cells)
     """
-    n = _whole(n_cells, "n_cells", 1)
+    n = v.whole(n_cells, "n_cells", 1)
     doors = np.zeros((2, n), bool)
     for side, cells in enumerate((left, right)):
         idx = np.asarray(cells, int).reshape(-1)
@@ -161,7 +162,7 @@ def simulate_hallway(
     -------
     HallwayRun
     """
-    n_cycles = _whole(n_cycles, "n_cycles", 0)
+    n_cycles = v.whole(n_cycles, "n_cycles", 0)
     pm = v.probability(motion_reliability, "motion_reliability")
     ps = v.probability(sensor_reliability, "sensor_reliability")
     if boundary not in BOUNDARIES:
@@ -185,24 +186,12 @@ def simulate_hallway(
         readings.append(saw)
         beliefs.append(belief)
     return HallwayRun(
-        _frozen(door_map),
-        _frozen(np.array(cells)),
-        _frozen(np.array(readings)),
-        _frozen(np.array(beliefs)),
+        read_only(door_map, dtype=None),
+        read_only(cells, dtype=int),
+        read_only(readings, dtype=None),
+        read_only(beliefs),
         pm,
         ps,
         boundary,
         seed,
     )
-
-
-def _whole(x, name: str, least: int) -> int:
-    if isinstance(x, bool) or not isinstance(x, (int, np.integer)) or x < least:
-        raise ValueError(f"{name} must be a whole number >= {least}, got {x!r}")
-    return int(x)
-
-
-def _frozen(a: np.ndarray) -> np.ndarray:
-    a = np.array(a)
-    a.flags.writeable = False
-    return a

@@ -8,12 +8,7 @@ import numpy as np
 
 from .. import _validate as v
 from ..filters.kalman import kf_1d_cycle
-
-
-def _frozen(a) -> np.ndarray:
-    a = np.asarray(a, dtype=float)
-    a.flags.writeable = False
-    return a
+from .records import read_only
 
 
 @dataclass(frozen=True)
@@ -65,8 +60,7 @@ def simulate_line(
         -------
         LineRun
     """
-    if isinstance(n_steps, bool) or not isinstance(n_steps, (int, np.integer)) or n_steps < 2:
-        raise ValueError(f"n_steps must be a whole number >= 2, got {n_steps!r}")
+    n_steps = v.whole(n_steps, "n_steps", 2)
     step_std = v.positive(step_std, "step_std", "a standard deviation", "m")
     sensor_std = v.positive(sensor_std, "sensor_std", "a standard deviation", "m")
     speed = v.scalar(speed, "speed")
@@ -86,14 +80,14 @@ def simulate_line(
         m, s2 = kf_1d_cycle(m, s2, u[k], z[k], R=step_std**2, Q=sensor_std**2)[4:]
         mu[k], var[k] = m, s2
     return LineRun(
-        _frozen(t),
-        _frozen(u),
-        _frozen(truth),
-        _frozen(z),
-        _frozen(mu),
-        _frozen(var),
+        read_only(t),
+        read_only(u),
+        read_only(truth),
+        read_only(z),
+        read_only(mu),
+        read_only(var),
         step_std,
         sensor_std,
         seed,
-        _frozen(dead_reckoning),
+        read_only(dead_reckoning),
     )

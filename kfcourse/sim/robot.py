@@ -16,18 +16,12 @@ import numpy as np
 
 from .. import _validate as v
 from ..models import range_bearing, unicycle, wrap_angle
-
-
-def _read_only(a, dtype=float) -> np.ndarray:
-    a = np.array(a, dtype=dtype)  # a copy, so nobody else holds a writeable view
-    a.flags.writeable = False
-    return a
-
+from .records import read_only
 
 # The default map: six landmarks around the default loop of :func:`loop_controls`
 # (x from -4 to 4 m, y from 0 to 5 m) and one in its middle, so that with the default
 # 4 m sensor range the robot sees one to three landmarks wherever it is.
-DEFAULT_LANDMARKS = _read_only(
+DEFAULT_LANDMARKS = read_only(
     [
         [-5.5, -1.0],  # m
         [0.0, -1.5],
@@ -65,12 +59,6 @@ class RobotRun:
     range_std: float  #: range noise (m)
     bearing_std: float  #: bearing noise (rad)
     seed: int
-
-
-def _whole(x, name: str, least: int) -> int:
-    if isinstance(x, bool) or not isinstance(x, (int, np.integer)) or x < least:
-        raise ValueError(f"{name} must be a whole number >= {least}, got {x!r}")
-    return int(x)
 
 
 def loop_controls(
@@ -115,7 +103,7 @@ def loop_controls(
             raise ValueError(f"{name} must be at least 2 radius = {2 * radius} m, got {side}")
     speed = v.positive(speed, "speed", "a speed", "m/s")
     dt = v.positive(dt, "dt", "a time step", "s")
-    laps = _whole(laps, "laps", 1)
+    laps = v.whole(laps, "laps", 1)
     step = speed * dt  # m driven per step
     n_turn = max(1, round((math.pi / 2) * radius / step))  # steps per quarter circle
     n_long = round((length - 2 * radius) / step)  # steps along a long straight
@@ -204,7 +192,7 @@ def simulate_robot(
     omega_std = v.non_negative(omega_std, "omega_std", "a standard deviation", "rad/s")
     range_std = v.non_negative(range_std, "range_std", "a standard deviation", "m")
     bearing_std = v.non_negative(bearing_std, "bearing_std", "a standard deviation", "rad")
-    seed = _whole(seed, "seed", 0)
+    seed = v.whole(seed, "seed", 0)
     n_steps, n_marks = len(u), len(m)
 
     rng = np.random.default_rng(seed)
@@ -228,15 +216,15 @@ def simulate_robot(
         z[visible[:, j], j] = noisy[visible[:, j]]
 
     return RobotRun(
-        t=_read_only(dt * np.arange(1, n_steps + 1)),
+        t=read_only(dt * np.arange(1, n_steps + 1)),
         dt=dt,
-        u=_read_only(u),
-        odometry=_read_only(odometry),
-        start=_read_only(start),
-        truth=_read_only(truth),
-        landmarks=_read_only(m),
-        visible=_read_only(visible, dtype=bool),
-        z=_read_only(z),
+        u=read_only(u),
+        odometry=read_only(odometry),
+        start=read_only(start),
+        truth=read_only(truth),
+        landmarks=read_only(m),
+        visible=read_only(visible, dtype=bool),
+        z=read_only(z),
         sensor_range=sensor_range,
         v_std=v_std,
         omega_std=omega_std,

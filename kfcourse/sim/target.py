@@ -24,6 +24,7 @@ from .. import _validate as v
 from ..filters.batch import kf_step_batch
 from ..filters.kalman import kf_step
 from ..models import constant_velocity
+from .records import read_only
 
 DT = 0.1  # s between readings
 SPEED = 2.0  # m/s, the target's constant speed
@@ -43,12 +44,6 @@ LEGS = (
     (2.0, math.pi / 4),  # 90 degrees left in 2 s
     (1.0, 0.0),
 )
-
-
-def _read_only(a, dtype=float) -> np.ndarray:
-    a = np.array(a, dtype=dtype)  # a copy, so nobody else holds a writeable view
-    a.flags.writeable = False
-    return a
 
 
 @dataclass(frozen=True)
@@ -125,10 +120,10 @@ def simulate_target(seed: int = 0, sensor_std: float = SENSOR_STD) -> TargetRun:
     pos = np.cumsum(vel * DT, axis=0)
     e = np.random.default_rng(seed).standard_normal(pos.shape)
     return TargetRun(
-        t=_read_only(DT * np.arange(omega.size)),
-        truth=_read_only(np.hstack([pos, vel])),
-        z=_read_only(pos + sensor_std * e),
-        turning=_read_only(omega != 0, dtype=bool),
+        t=read_only(DT * np.arange(omega.size)),
+        truth=read_only(np.hstack([pos, vel])),
+        z=read_only(pos + sensor_std * e),
+        turning=read_only(omega != 0, dtype=bool),
         dt=DT,
         sensor_std=sensor_std,
         seed=seed,
@@ -185,7 +180,7 @@ def filter_target(run: TargetRun, R, Q) -> TargetEstimates:
     Sig_bar = F @ Sig_all[:-1] @ F.T + R_used[1:]  # Sig_bar = F Sig F^T + R
     S = H @ Sig_bar @ H.T + Q_used[1:]  # innovation covariance S = H Sig_bar H^T + Q
     K_all[1:] = Sig_bar @ H.T @ np.linalg.inv(S)  # K = Sig_bar H^T S^-1
-    return TargetEstimates(_read_only(mu_all), _read_only(Sig_all), _read_only(K_all), _read_only(R), _read_only(Q))
+    return TargetEstimates(read_only(mu_all), read_only(Sig_all), read_only(K_all), read_only(R), read_only(Q))
 
 
 # --------------------------------------------------------------- many tracks at once: the NEES
@@ -231,9 +226,7 @@ def simulate_tracks(
     -------
     TrackBatch
     """
-    for name, n in (("n_tracks", n_tracks), ("n_steps", n_steps)):
-        if isinstance(n, bool) or not isinstance(n, (int, np.integer)) or n < 2:
-            raise ValueError(f"{name} must be a whole number >= 2, got {n!r}")
+    n_tracks, n_steps = v.whole(n_tracks, "n_tracks", 2), v.whole(n_steps, "n_steps", 2)
     accel_std = v.non_negative(accel_std, "accel_std", "a standard deviation", "m/s²")
     sensor_std = v.positive(sensor_std, "sensor_std", "a standard deviation", "m")
     dt = v.positive(dt, "dt", "a time step", "s")
@@ -248,7 +241,7 @@ def simulate_tracks(
         a = accel_std * rng.standard_normal((n_tracks, 2))
         truth[:, k] = truth[:, k - 1] @ F.T + a @ G.T  # x_k = F x_{k-1} + G a_k
     z = truth[:, :, :2] + sensor_std * rng.standard_normal((n_tracks, n_steps, 2))
-    return TrackBatch(_read_only(truth), _read_only(z), dt, accel_std, sensor_std, seed)
+    return TrackBatch(read_only(truth), read_only(z), dt, accel_std, sensor_std, seed)
 
 
 def filter_tracks(batch: TrackBatch, R, Q) -> tuple[np.ndarray, np.ndarray]:
@@ -275,7 +268,7 @@ def filter_tracks(batch: TrackBatch, R, Q) -> tuple[np.ndarray, np.ndarray]:
     for k in range(1, T):
         mu, Sig = kf_step_batch(mu, Sig, None, batch.z[:, k], F, None, H, R, Q)
         mu_all[:, k], Sig_all[:, k] = mu, Sig
-    return _read_only(mu_all), _read_only(Sig_all)
+    return read_only(mu_all), read_only(Sig_all)
 
 
 def nees(truth, mu, Sig) -> np.ndarray:
@@ -318,9 +311,7 @@ def nees_band(n_runs: int, dof: int, level: float = 0.95) -> tuple[float, float]
     -------
     (low, high) : floats
     """
-    for name, n in (("n_runs", n_runs), ("dof", dof)):
-        if isinstance(n, bool) or not isinstance(n, (int, np.integer)) or n < 1:
-            raise ValueError(f"{name} must be a whole number >= 1, got {n!r}")
+    n_runs, dof = v.whole(n_runs, "n_runs", 1), v.whole(dof, "dof", 1)
     level = v.scalar(level, "level")
     if not 0 < level < 1:
         raise ValueError(f"level must lie between 0 and 1, got {level}")

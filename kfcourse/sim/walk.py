@@ -14,12 +14,7 @@ import numpy as np
 
 from .. import _validate as v
 from ..filters.kalman import kf_1d_cycle
-
-
-def _frozen(a) -> np.ndarray:
-    a = np.array(a, dtype=float)
-    a.flags.writeable = False
-    return a
+from .records import read_only
 
 
 @dataclass(frozen=True)
@@ -150,8 +145,7 @@ def simulate_walk(
     -------
     WalkRun
     """
-    if isinstance(n_steps, bool) or not isinstance(n_steps, (int, np.integer)) or n_steps < 1:
-        raise ValueError(f"n_steps must be a whole number >= 1, got {n_steps!r}")
+    n_steps = v.whole(n_steps, "n_steps", 1)
     u = v.scalar(u, "u")
     R_true = v.variance(R_true, "R_true")
     Q_true = v.variance(Q_true, "Q_true")
@@ -176,17 +170,17 @@ def simulate_walk(
         mu, var = cyc.mu, cyc.var
     mu_bar, var_bar, innovation, S, K, mu_k, var_k = np.array(rows).T
     return WalkRun(
-        t=_frozen(np.arange(1, n_steps + 1)),
-        u=_frozen(np.full(n_steps, u)),
-        truth=_frozen(truth),
-        z=_frozen(z),
-        mu_bar=_frozen(mu_bar),
-        var_bar=_frozen(var_bar),
-        innovation=_frozen(innovation),
-        S=_frozen(S),
-        K=_frozen(K),
-        mu=_frozen(mu_k),
-        var=_frozen(var_k),
+        t=read_only(np.arange(1, n_steps + 1)),
+        u=read_only(np.full(n_steps, u)),
+        truth=read_only(truth),
+        z=read_only(z),
+        mu_bar=read_only(mu_bar),
+        var_bar=read_only(var_bar),
+        innovation=read_only(innovation),
+        S=read_only(S),
+        K=read_only(K),
+        mu=read_only(mu_k),
+        var=read_only(var_k),
         x0=x0,
         mu0=mu0,
         var0=var0,
