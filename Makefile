@@ -37,6 +37,7 @@ lint: $(STAMP)
 bench: $(STAMP)
 	$(BIN)/python benchmarks/bench_filters.py
 	$(BIN)/python benchmarks/bench_demos.py
+	$(BIN)/python benchmarks/bench_batch.py
 
 # Re-execute the notebooks and store the outputs of the NBVAL_CHECK_OUTPUT cells only.
 notebooks: $(STAMP)

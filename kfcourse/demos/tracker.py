@@ -107,10 +107,11 @@ def tracker(seed: int = 0) -> Demo:
     (truth_vel,) = ax.plot([], [], color=palette.TRUTH, lw=2.5, zorder=3)
     pings = ax.scatter([], [], s=12, color=palette.MEASUREMENT, alpha=0.7, label="readings", zorder=2)
     (trail,) = ax.plot([], [], color=palette.ESTIMATE, lw=1.6, alpha=0.8, label="estimate")
+    (ahead,) = ax.plot([], [], ":", color=palette.ESTIMATE, lw=1.2, alpha=0.5, label="estimate ahead")
     (est_dot,) = ax.plot([], [], "o", color=palette.ESTIMATE, ms=8, zorder=4)
     (est_vel,) = ax.plot([], [], color=palette.ESTIMATE, lw=2.5, zorder=4)
     ring = covariance_ellipse(ax, run.z[0], np.eye(2), nsig=2.0, label="2σ ellipse", zorder=4)
-    ax.legend(loc="lower left", bbox_to_anchor=(0.0, 1.0), ncols=4, fontsize=9)
+    ax.legend(loc="lower left", bbox_to_anchor=(0.0, 1.0), ncols=5, fontsize=9)
     readout = widgets.HTML()  # text under the picture: no glyphs to render into the PNG
     readout.add_class("kf-readout")
 
@@ -122,12 +123,13 @@ def tracker(seed: int = 0) -> Demo:
             fits = np.where(d != 0, room / np.abs(d), np.inf).min()  # fraction of the line inside the view
         return p + float(np.clip(fits, 0.0, 1.0)) * d
 
-    renderer = FigureRenderer(fig, [pings, trail, truth_vel, truth_dot, est_vel, est_dot, ring])
+    renderer = FigureRenderer(fig, [pings, trail, ahead, truth_vel, truth_dot, est_vel, est_dot, ring])
 
     def draw() -> None:
         k, est = model.frame, model.est
         pings.set_offsets(run.z[: k + 1])
         trail.set_data(est.mu[: k + 1, 0], est.mu[: k + 1, 1])
+        ahead.set_data(est.mu[k:, 0], est.mu[k:, 1])  # the rest of the run with these settings
         p_true, p_est = run.truth[k, :2], est.mu[k, :2]
         v_est, v_true = model.velocities()
         truth_dot.set_data([p_true[0]], [p_true[1]])
@@ -147,7 +149,8 @@ def tracker(seed: int = 0) -> Demo:
     caption = (
         "<b>2-D tracker.</b> Grey: the target's true path, its position now and its true velocity (the line "
         "shows where it would be 1 s later). Orange dots: noisy position readings (σ = 1 m). "
-        "Teal: the filter's estimate, its trail, its estimated velocity and its 2σ ellipse. "
+        "Teal: the filter's estimate, its trail, its estimated velocity and its 2σ ellipse; dotted teal: where "
+        "these settings take the estimate for the rest of the run. "
         "<i>Run</i> plays time, <i>step</i> scrubs it. <i>Q</i> is the sensor noise the filter "
         "<i>assumes</i>; <i>σₐ²</i> is the random acceleration it assumes, which sets its process noise R: "
         "they retune the filter, the target and the readings stay the same. "

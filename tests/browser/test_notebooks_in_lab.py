@@ -318,8 +318,10 @@ class DemoDriver:
     # ---- Run/Pause (a toggle button; the kernel advances the frames)
 
     def drive_play(self, play, frame) -> None:
+        # Start from the first frame, so that Run still runs when Pause is pressed (a run that
+        # reaches the last frame stops by itself, and the Pause click would then start it again).
         frame_state = frame.evaluate(JS_SLIDER_STATE) if frame is not None else None
-        if frame_state is not None and frame_state["atMax"]:
+        if frame_state is not None and not frame_state["atMin"]:
             ok, _ = self.press(frame.locator(".noUi-handle").first, frame, "Home")
             if not ok:
                 self.problem("frame slider: Home did not change the picture")

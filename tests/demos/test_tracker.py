@@ -55,13 +55,14 @@ def test_sliders_retune_the_filter_not_the_world():
 def test_picture_shows_the_frame_estimate_ellipse_and_velocities():
     demo = make()
     m = demo.model
-    pings, trail, truth_vel, truth_dot, est_vel, est_dot, ring = demo.renderer.dynamic
+    pings, trail, ahead, truth_vel, truth_dot, est_vel, est_dot, ring = demo.renderer.dynamic
     for k in (0, 37, 120):
         demo.controls["frame"].value = k
         assert m.frame == k
         assert len(pings.get_offsets()) == k + 1  # orange: the readings so far
         np.testing.assert_allclose(pings.get_offsets()[-1], m.run.z[k])
         np.testing.assert_allclose(trail.get_xydata()[-1], m.est.mu[k, :2])  # teal trail ends at the estimate
+        np.testing.assert_allclose(ahead.get_xydata(), m.est.mu[k:, :2])  # dotted: the rest of the run
         np.testing.assert_allclose(est_dot.get_xydata()[0], m.est.mu[k, :2])
         np.testing.assert_allclose(truth_dot.get_xydata()[0], m.run.truth[k, :2])  # grey dot: the truth now
         np.testing.assert_allclose(ring.get_center(), m.est.mu[k, :2])
@@ -179,7 +180,7 @@ def try_3_huge_sigma_a_is_jittery_and_the_velocity_line_stays_in_view(demo):
     assert 160.0 < np.abs(v_err).max() < 200.0 and 50.0 < v_err.std() < 70.0  # "up to about ±180", "near 60"
     ax = demo.renderer.fig.axes[0]
     (x0, x1), (y0, y1) = ax.get_xlim(), ax.get_ylim()
-    est_vel = demo.renderer.dynamic[4]
+    est_vel = demo.renderer.dynamic[5]
     for k in range(demo.controls["frame"].max + 1):
         demo.controls["frame"].value = k
         start, (x, y) = est_vel.get_xydata()
