@@ -196,6 +196,30 @@ def covariance(x, name: str, n: int | None = None) -> np.ndarray:
     return covariances((x, name, n))[0]
 
 
+def covariance_stack(x, name: str, N: int, n: int) -> np.ndarray:
+    """A finite (N, n, n) stack of symmetric positive semi-definite matrices (one covariance per
+    filter of a batch), checked all at once with the tolerances of :func:`covariance`."""
+    a = finite(x, name)
+    if a.shape != (N, n, n):
+        raise ValueError(f"{name} must have shape ({N}, {n}, {n}), one covariance per filter, got {a.shape}")
+    scale = np.abs(a).max(axis=(1, 2))  # (N,)
+    asymmetry = np.abs(a - a.transpose(0, 2, 1)).max(axis=(1, 2))
+    bad = np.flatnonzero(asymmetry > _SYM_RTOL * scale)
+    if bad.size:
+        raise ValueError(f"{name}[{bad[0]}] must be a symmetric covariance matrix, got {a[bad[0]].tolist()}")
+    try:
+        np.linalg.cholesky(a)  # succeeds only if every one is positive definite: the common case
+    except np.linalg.LinAlgError:
+        lowest = np.linalg.eigvalsh(a)[:, 0]  # semi-definite is fine: look at the smallest eigenvalue of each
+        bad = np.flatnonzero(lowest < -_PSD_RTOL * scale)
+        if bad.size:
+            i = bad[0]
+            raise ValueError(
+                f"{name}[{i}] must be positive semi-definite (a covariance), but has eigenvalue {lowest[i]:.3g}"
+            ) from None
+    return a
+
+
 def update_inputs(mu_bar, Sig_bar, z, Q) -> tuple[np.ndarray, np.ndarray, np.ndarray, np.ndarray]:
     """The inputs every measurement update shares: the predicted belief
     ``mu_bar`` (n,), ``Sig_bar`` (n, n), the reading ``z`` (k,) and its noise

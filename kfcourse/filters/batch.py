@@ -24,30 +24,6 @@ def _stack(x, name: str, N: int | None, n: int | None) -> np.ndarray:
     return a
 
 
-def _covariance_stack(x, name: str, N: int, n: int) -> np.ndarray:
-    """A finite (N, n, n) stack of symmetric positive semi-definite matrices, checked all at once
-    with the tolerances of :func:`kfcourse._validate.covariance`."""
-    a = v.finite(x, name)
-    if a.shape != (N, n, n):
-        raise ValueError(f"{name} must have shape ({N}, {n}, {n}), one covariance per filter, got {a.shape}")
-    scale = np.abs(a).max(axis=(1, 2))  # (N,)
-    asymmetry = np.abs(a - a.transpose(0, 2, 1)).max(axis=(1, 2))
-    bad = np.flatnonzero(asymmetry > v._SYM_RTOL * scale)
-    if bad.size:
-        raise ValueError(f"{name}[{bad[0]}] must be a symmetric covariance matrix, got {a[bad[0]].tolist()}")
-    try:
-        np.linalg.cholesky(a)  # succeeds only if every one is positive definite: the common case
-    except np.linalg.LinAlgError:
-        lowest = np.linalg.eigvalsh(a)[:, 0]  # semi-definite is fine: look at the smallest eigenvalue of each
-        bad = np.flatnonzero(lowest < -v._PSD_RTOL * scale)
-        if bad.size:
-            i = bad[0]
-            raise ValueError(
-                f"{name}[{i}] must be positive semi-definite (a covariance), but has eigenvalue {lowest[i]:.3g}"
-            ) from None
-    return a
-
-
 def kf_step_batch(mu, Sig, u, z, F, B, H, R, Q) -> tuple[np.ndarray, np.ndarray]:
     r"""One full Kalman cycle for N filters at once, equal to N calls of :func:`kf_step`.
 
@@ -82,7 +58,7 @@ def kf_step_batch(mu, Sig, u, z, F, B, H, R, Q) -> tuple[np.ndarray, np.ndarray]
     """
     mu = _stack(mu, "mu", None, None)
     N, n = mu.shape
-    Sig = _covariance_stack(Sig, "Sig", N, n)
+    Sig = v.covariance_stack(Sig, "Sig", N, n)
     F = v.matrix(F, "F", n, n)
     R = v.covariance(R, "R", n)
     if (B is None) != (u is None):
