@@ -166,13 +166,13 @@ def tracker(seed: int = 0) -> Demo:
         frames=run.t.size,
         controls={
             "Q": (
-                slider(widgets.FloatLogSlider, "Q: assumed sensor variance (m²)", Q_TUNED, -3, 4, 0.1, ".3g", base=10),
+                slider(widgets.FloatLogSlider, "assumed Q (m²)", Q_TUNED, -3, 4, 0.1, ".3g", base=10),
                 model.set_q_var,
             ),
             "R": (
                 slider(
                     widgets.FloatLogSlider,
-                    "σₐ²: assumed acceleration variance (m²/s⁴)",
+                    "assumed σₐ² (m²/s⁴)",
                     ACCEL_TUNED,
                     -3,
                     7,

@@ -26,7 +26,7 @@ except ImportError:  # the `browser` fixture skips (fails on CI) with the reason
 
 pytestmark = pytest.mark.browser
 
-VIEWPORT = {"width": 1400, "height": 1000}
+VIEWPORT = {"width": 1400, "height": 1400}
 RUN_ALL_TIMEOUT_MS = int(os.environ.get("KFCOURSE_RUN_ALL_TIMEOUT_S", "240")) * 1000
 KERNEL_IDLE_TIMEOUT_MS = 90_000
 WIDGETS_RENDER_TIMEOUT_MS = 30_000
