@@ -31,11 +31,11 @@ from .walk import simulate_walk
 
 __all__ = [
     "DEFAULT_LANDMARKS",
+    "TWO_LANDMARKS",
     "EkfRun",
     "HallwayRun",
     "LineRun",
     "RobotRun",
-    "TWO_LANDMARKS",
     "TargetEstimates",
     "TargetRun",
     "TrackBatch",
