@@ -52,3 +52,48 @@ def jacobian_runs_chart(right, wrong, every: int = 12):
     ax_e.set_ylabel("position error (m)")
     ax_e.legend(loc="upper left", fontsize=8)
     return fig
+
+
+def nonlinear_samples_chart(x, y, bins: int = 60):
+    """Chapter 7: samples of a Gaussian input and of their images under a nonlinear function.
+
+    Left: a histogram of the input samples ``x`` (purple); right: of the outputs
+    ``y`` (grey) with the Gaussian of the same mean and variance (dashed) — the
+    outputs are not Gaussian, whatever their mean and variance.
+
+    Introduced in chapter 7.
+
+    Parameters
+    ----------
+    x, y : array_like, shape (N,)
+        Input samples and their images ``y = f(x)``.
+    bins : int
+        Histogram bins (>= 2).
+
+    Returns
+    -------
+    matplotlib.figure.Figure
+    """
+    x, y = np.asarray(x, float).ravel(), np.asarray(y, float).ravel()
+    if x.size < 2 or y.size != x.size or not (np.isfinite(x).all() and np.isfinite(y).all()):
+        raise ValueError(f"x and y must be finite arrays of the same length >= 2, got {x.size} and {y.size}")
+    bins = int(bins)
+    if bins < 2:
+        raise ValueError(f"bins must be a whole number >= 2, got {bins}")
+    fig, (ax_x, ax_y) = new_figure(8.0, 3.0, ncols=2)
+    ax_x.hist(x, bins=bins, density=True, color=palette.PREDICTION, alpha=0.6)
+    ax_x.set_xlabel("input x")
+    ax_x.set_ylabel("density")
+    ax_y.hist(y, bins=bins, density=True, color=palette.TRUTH, alpha=0.8, label="samples of f(x)")
+    grid = np.linspace(y.min(), y.max(), 400)
+    var = max(float(y.var()), 1e-12)
+    ax_y.plot(
+        grid,
+        np.exp(-0.5 * (grid - y.mean()) ** 2 / var) / np.sqrt(2 * np.pi * var),
+        color=palette.INK,
+        ls="--",
+        label="Gaussian, same mean and variance",
+    )
+    ax_y.set_xlabel("output y = f(x)")
+    ax_y.legend(loc="upper right", fontsize=8)
+    return fig

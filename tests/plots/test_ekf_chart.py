@@ -36,3 +36,17 @@ def test_chart_draws_both_runs(runs):
 def test_bad_every(runs):
     with pytest.raises(ValueError, match="every"):
         kf.plots.jacobian_runs_chart(*runs, every=0)
+
+
+def test_samples_chart_draws_both_histograms():
+    x = np.random.default_rng(0).normal(1.0, 0.5, 5000)
+    fig = kf.plots.nonlinear_samples_chart(x, x**2, bins=40)
+    ax_x, ax_y = fig.axes
+    assert len(ax_x.patches) == 40 and len(ax_y.patches) == 40
+    heights = np.array([p.get_height() for p in ax_y.patches])
+    widths = np.array([p.get_width() for p in ax_y.patches])
+    assert np.sum(heights * widths) == pytest.approx(1.0)  # a density
+    (gauss,) = ax_y.get_lines()
+    assert np.isfinite(gauss.get_xydata()).all()
+    with pytest.raises(ValueError, match="same length"):
+        kf.plots.nonlinear_samples_chart(x, x[:10])
