@@ -97,8 +97,7 @@ def linearization(seed: int = 0) -> Demo:
     ax_in.set_ylabel("density")
     ax_out.set_xlabel("density")
     ax_txt.axis("off")
-    for ax in (ax_in, ax_out):
-        fixed_width_ticks(ax.yaxis if ax is ax_in else ax.xaxis, 5)
+    fixed_width_ticks(ax_in.yaxis, 5)  # the layout is found once: keep the density labels one width
     fixed_width_ticks(ax_f.yaxis, 5)
 
     x = np.linspace(*X_RANGE, 400)
@@ -112,7 +111,9 @@ def linearization(seed: int = 0) -> Demo:
     (true_mean,) = ax_out.plot([0, 1], [0, 0], color=palette.TRUTH, lw=1.2, ls=":")
     (ekf_mean,) = ax_out.plot([0, 1], [0, 0], color=palette.ESTIMATE, lw=1.2, ls=":")
     ax_out.legend(loc="upper right", fontsize=8)
-    info = ax_txt.text(0.0, 0.95, "", transform=ax_txt.transAxes, ha="left", va="top", fontsize=9, family="monospace")
+    info = ax_txt.text(
+        -0.1, 0.95, "", transform=ax_txt.transAxes, ha="left", va="top", fontsize=8.5, family="monospace"
+    )
     renderer = FigureRenderer(fig, [tangent, point, inp, hist, ekf, true_mean, ekf_mean, info])
     shown = {"function": None}
 
@@ -151,8 +152,8 @@ def linearization(seed: int = 0) -> Demo:
             ax_out.set_xlim(0.0, top_out)
             renderer.invalidate()
         info.set_text(
-            f"input  N(m, s²): m = {m:.2f}, s² = {s * s:.3g}\n"
-            f"f'(m) = {slope:.3f}\n\n"
+            f"input:   m = {m:.2f}, s² = {s * s:.3g}\n"
+            f"slope:   f'(m) = {slope:.3f}\n\n"
             f"sampled: mean {mean_y:8.3f}\n"
             f"         var  {var_y:8.3g}\n"
             f"EKF:     mean {mean_e:8.3f}\n"
