@@ -6,7 +6,7 @@ import ipywidgets as widgets
 import numpy as np
 
 from ..plots import palette
-from ..plots.style import FigureRenderer, fixed_width_ticks, new_figure, nice_limit
+from ..plots.style import FigureRenderer, fixed_width_ticks, new_figure
 from ._base import Demo, slider
 
 X_RANGE = (-4.0, 4.0)
@@ -94,10 +94,11 @@ def linearization(seed: int = 0) -> Demo:
     ax_f.set_xlim(*X_RANGE)
     ax_f.set_ylabel("output y = f(x)")
     ax_in.set_xlabel("input x")
-    ax_in.set_ylabel("density")
-    ax_out.set_xlabel("density")
+    ax_in.set_ylabel("density\n(peak = 1)")
+    ax_out.set_xlabel("density (sampled peak = 1)")
+    ax_in.set_ylim(0.0, 1.15)  # both densities are drawn relative to a peak: the axes never rescale while dragging
+    ax_out.set_xlim(0.0, 1.6)
     ax_txt.axis("off")
-    fixed_width_ticks(ax_in.yaxis, 5)  # the layout is found once: keep the density labels one width
     fixed_width_ticks(ax_f.yaxis, 5)
 
     x = np.linspace(*X_RANGE, 400)
@@ -128,29 +129,23 @@ def linearization(seed: int = 0) -> Demo:
         fm, slope = float(f(m)), float(df(m))
         tangent.set_ydata(fm + slope * (x - m))  # f(m) + f'(m) (x - m)
         point.set_data([m], [fm])
-        p_in = _density(x, m, s * s)
-        inp.set_ydata(p_in)
-        top_in = nice_limit(1.1 * p_in.max())
+        inp.set_ydata(np.exp(-0.5 * (x - m) ** 2 / (s * s)))  # N(m, s^2) divided by its peak
         # The sampled output as a sideways histogram on fixed bins over the output axis.
         y = model.samples()
         edges = np.linspace(lo, hi, N_BINS + 1)
         counts, _ = np.histogram(y, bins=edges)
         dens = counts / (y.size * (edges[1] - edges[0]))
-        hist.set_data(np.concatenate([[0.0], np.repeat(dens, 2), [0.0]]), np.repeat(edges, 2))
         mean_y, var_y = float(y.mean()), float(y.var())
         mean_e, var_e = model.ekf()
-        top_out = nice_limit(1.1 * max(dens.max(), 0.05))
+        top_out = max(float(dens.max()), 1e-12)  # the sampled peak: both output densities are divided by it
         grid = np.linspace(lo, hi, 600)
         if var_e > 1e-12 * (hi - lo) ** 2:
-            ekf.set_data(np.minimum(_density(grid, mean_e, var_e), 2 * top_out), grid)
+            ekf.set_data(np.minimum(_density(grid, mean_e, var_e) / top_out, 2.0), grid)
         else:  # f'(m) = 0: the EKF claims no spread at all, a spike at f(m)
-            ekf.set_data([0.0, 0.0, top_out, 0.0, 0.0], [lo, mean_e, mean_e, mean_e, hi])
-        true_mean.set_data([0.0, top_out], [mean_y, mean_y])
-        ekf_mean.set_data([0.0, top_out], [mean_e, mean_e])
-        if ax_in.get_ylim() != (0.0, top_in) or ax_out.get_xlim() != (0.0, top_out):
-            ax_in.set_ylim(0.0, top_in)
-            ax_out.set_xlim(0.0, top_out)
-            renderer.invalidate()
+            ekf.set_data([0.0, 0.0, 2.0, 0.0, 0.0], [lo, mean_e, mean_e, mean_e, hi])
+        hist.set_data(np.concatenate([[0.0], np.repeat(dens / top_out, 2), [0.0]]), np.repeat(edges, 2))
+        true_mean.set_data([0.0, 2.0], [mean_y, mean_y])
+        ekf_mean.set_data([0.0, 2.0], [mean_e, mean_e])
         info.set_text(
             f"input:   m = {m:.2f}, s² = {s * s:.3g}\n"
             f"slope:   f'(m) = {slope:.3f}\n\n"
@@ -164,7 +159,9 @@ def linearization(seed: int = 0) -> Demo:
         "<b>Linearization.</b> Purple (bottom): the input Gaussian N(m, s²). Black: the function f; orange "
         "dashed: its tangent at m. Right, on the output axis: grey, a histogram of the true output "
         f"(the same {N_SAMPLES} seeded draws pushed through f); teal, the EKF's Gaussian N(f(m), f'(m)² s²), "
-        "what the tangent makes of the input. Dotted lines: the two means. Pick a function, drag the mean m "
+        "what the tangent makes of the input. Dotted lines: the two means. "
+        "Each density is drawn relative to a peak (the input's own; on the output side, the samples'), "
+        "so shapes and widths compare. Pick a function, drag the mean m "
         "and the width s, and compare the numbers."
     )
     return Demo(
