@@ -3,6 +3,7 @@ ipywidgets widget: ``kf.demos.hallway(seed=0)``."""
 
 from .covariance import covariance_ellipse
 from .hallway import hallway
+from .linearization import linearization
 from .nees import nees_panel
 from .raw_vs_filtered import raw_vs_filtered
 from .step_through import step_through
@@ -12,6 +13,7 @@ from .trust import trust_slider
 __all__ = [
     "covariance_ellipse",
     "hallway",
+    "linearization",
     "nees_panel",
     "raw_vs_filtered",
     "step_through",

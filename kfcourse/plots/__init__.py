@@ -23,6 +23,7 @@ from .artists import (
 )
 from .bayes import bayes_cycle_chart
 from .charts import blend_variance_chart, convergence_chart, drift_chart, ellipse_shadow_chart, samples_chart
+from .ekf import jacobian_runs_chart, nonlinear_samples_chart
 from .matrix import predict_update_chart
 from .runs import kf_run_chart
 from .style import FigureRenderer, new_figure
@@ -39,9 +40,11 @@ __all__ = [
     "ellipse_shadow_chart",
     "gain_gauge",
     "gaussian_curve",
+    "jacobian_runs_chart",
     "kf_run_chart",
     "landmarks",
     "new_figure",
+    "nonlinear_samples_chart",
     "palette",
     "predict_update_chart",
     "robot",

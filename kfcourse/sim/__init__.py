@@ -2,6 +2,7 @@
 time), or is a pure function of its inputs and a seeded generator."""
 
 from .drift import bias_drift, drift_sigma, monte_carlo_drift
+from .ekf_runs import TWO_LANDMARKS, EkfRun, flipped_bearing_jacobian, run_ekf
 from .hallway import (
     HallwayRun,
     door_likelihood,
@@ -30,6 +31,8 @@ from .walk import simulate_walk
 
 __all__ = [
     "DEFAULT_LANDMARKS",
+    "TWO_LANDMARKS",
+    "EkfRun",
     "HallwayRun",
     "LineRun",
     "RobotRun",
@@ -41,6 +44,7 @@ __all__ = [
     "drift_sigma",
     "filter_target",
     "filter_tracks",
+    "flipped_bearing_jacobian",
     "hallway_doors",
     "loop_controls",
     "monte_carlo_drift",
@@ -50,6 +54,7 @@ __all__ = [
     "nees_band",
     "process_noise",
     "read_door",
+    "run_ekf",
     "simulate_hallway",
     "simulate_line",
     "simulate_robot",

@@ -17,7 +17,16 @@ from matplotlib.text import Text
 import kfcourse as kf
 from kfcourse.demos.hallway import DOORS
 
-DEMOS = ["raw_vs_filtered", "hallway", "covariance_ellipse", "step_through", "trust_slider", "tracker", "nees_panel"]
+DEMOS = [
+    "raw_vs_filtered",
+    "hallway",
+    "covariance_ellipse",
+    "step_through",
+    "trust_slider",
+    "tracker",
+    "nees_panel",
+    "linearization",
+]
 
 
 def make(name, seed=0):

@@ -18,7 +18,16 @@ from PIL import Image
 
 import kfcourse as kf
 
-DEMOS = ["raw_vs_filtered", "hallway", "covariance_ellipse", "step_through", "trust_slider", "tracker", "nees_panel"]
+DEMOS = [
+    "raw_vs_filtered",
+    "hallway",
+    "covariance_ellipse",
+    "step_through",
+    "trust_slider",
+    "tracker",
+    "nees_panel",
+    "linearization",
+]
 SLIDERS = (widgets.IntSlider, widgets.FloatSlider, widgets.FloatLogSlider)
 
 

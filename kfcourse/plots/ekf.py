@@ -1,0 +1,99 @@
+"""Static figures of EKF runs (chapter 7): data in, figure out."""
+
+from __future__ import annotations
+
+import numpy as np
+
+from . import palette
+from .artists import covariance_ellipse, landmarks
+from .style import new_figure
+
+
+def jacobian_runs_chart(right, wrong, every: int = 12):
+    """Chapter 7: the same drive filtered with the right Jacobian and with a wrong one.
+
+    Left and middle: the map, the true path (grey), the estimate (teal) and its
+    3-sigma position ellipse every ``every`` steps, the landmarks (purple squares);
+    one panel per run, titled with its final error and its share of steps with the
+    truth inside the ellipse.  Right: the position error over time of both runs
+    (solid: right Jacobian, dashed: wrong).
+
+    Introduced in chapter 7.
+
+    Parameters
+    ----------
+    right, wrong : object with ``t, truth, landmarks, mu, Sig, error, inside``
+        Run records such as :class:`kfcourse.sim.ekf_runs.EkfRun`.
+    every : int
+        Steps between two drawn ellipses (>= 1).
+
+    Returns
+    -------
+    matplotlib.figure.Figure
+    """
+    every = int(every)
+    if every < 1:
+        raise ValueError(f"every must be a whole number >= 1, got {every}")
+    fig, (ax_a, ax_b, ax_e) = new_figure(11.0, 3.8, ncols=3, gridspec_kw={"width_ratios": [1, 1, 1.1]})
+    for ax, run, name in ((ax_a, right, "right H"), (ax_b, wrong, "bearing row of H flipped")):
+        ax.plot(run.truth[:, 0], run.truth[:, 1], color=palette.TRUTH, lw=2.5, label="truth")
+        ax.plot(run.mu[:, 0], run.mu[:, 1], color=palette.ESTIMATE, lw=1.5, label="EKF estimate")
+        for k in range(0, run.t.size, every):
+            covariance_ellipse(ax, run.mu[k, :2], run.Sig[k, :2, :2], nsig=3.0, lw=1.0)
+        landmarks(ax, run.landmarks)
+        ax.set_aspect("equal", adjustable="datalim")
+        ax.set_xlabel("x (m)")
+        ax.set_title(f"{name}\nfinal error {run.error[-1]:.2f} m, truth in 3σ: {np.mean(run.inside):.0%}", fontsize=10)
+    ax_a.set_ylabel("y (m)")
+    ax_a.legend(loc="upper left", fontsize=8)
+    ax_e.plot(right.t, right.error, color=palette.ESTIMATE, lw=2, label="right H")
+    ax_e.plot(wrong.t, wrong.error, color=palette.ESTIMATE, lw=2, ls="--", label="flipped bearing row")
+    ax_e.set_xlabel("time (s)")
+    ax_e.set_ylabel("position error (m)")
+    ax_e.legend(loc="upper left", fontsize=8)
+    return fig
+
+
+def nonlinear_samples_chart(x, y, bins: int = 60):
+    """Chapter 7: samples of a Gaussian input and of their images under a nonlinear function.
+
+    Left: a histogram of the input samples ``x`` (purple); right: of the outputs
+    ``y`` (grey) with the Gaussian of the same mean and variance (dashed) — the
+    outputs are not Gaussian, whatever their mean and variance.
+
+    Introduced in chapter 7.
+
+    Parameters
+    ----------
+    x, y : array_like, shape (N,)
+        Input samples and their images ``y = f(x)``.
+    bins : int
+        Histogram bins (>= 2).
+
+    Returns
+    -------
+    matplotlib.figure.Figure
+    """
+    x, y = np.asarray(x, float).ravel(), np.asarray(y, float).ravel()
+    if x.size < 2 or y.size != x.size or not (np.isfinite(x).all() and np.isfinite(y).all()):
+        raise ValueError(f"x and y must be finite arrays of the same length >= 2, got {x.size} and {y.size}")
+    bins = int(bins)
+    if bins < 2:
+        raise ValueError(f"bins must be a whole number >= 2, got {bins}")
+    fig, (ax_x, ax_y) = new_figure(8.0, 3.0, ncols=2)
+    ax_x.hist(x, bins=bins, density=True, color=palette.PREDICTION, alpha=0.6)
+    ax_x.set_xlabel("input x")
+    ax_x.set_ylabel("density")
+    ax_y.hist(y, bins=bins, density=True, color=palette.TRUTH, alpha=0.8, label="samples of f(x)")
+    grid = np.linspace(y.min(), y.max(), 400)
+    var = max(float(y.var()), 1e-12)
+    ax_y.plot(
+        grid,
+        np.exp(-0.5 * (grid - y.mean()) ** 2 / var) / np.sqrt(2 * np.pi * var),
+        color=palette.INK,
+        ls="--",
+        label="Gaussian, same mean and variance",
+    )
+    ax_y.set_xlabel("output y = f(x)")
+    ax_y.legend(loc="upper right", fontsize=8)
+    return fig
