@@ -150,7 +150,7 @@ def simulate_robot(
 
     The draws depend only on ``seed``, the number of steps and the number of
     landmarks, so changing a ``*_std`` rescales the same noise: a slider changes the
-    picture smoothly.  Introduced in chapter 10 (used from chapter 8).
+    picture smoothly.  Introduced in chapter 7 (a short run for the EKF).
 
     Parameters
     ----------
