@@ -20,16 +20,7 @@ import numpy as np
 
 import kfcourse as kf
 
-DEMOS = [
-    "raw_vs_filtered",
-    "hallway",
-    "covariance_ellipse",
-    "step_through",
-    "trust_slider",
-    "tracker",
-    "nees_panel",
-    "linearization",
-]
+DEMOS = kf.demos.__all__  # every demo the course ships
 SWEEP = 40  # changes per slider
 PRESSES = 30  # presses per button
 MEDIAN_TARGET = 50.0  # ms

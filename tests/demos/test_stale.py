@@ -18,16 +18,7 @@ from PIL import Image
 
 import kfcourse as kf
 
-DEMOS = [
-    "raw_vs_filtered",
-    "hallway",
-    "covariance_ellipse",
-    "step_through",
-    "trust_slider",
-    "tracker",
-    "nees_panel",
-    "linearization",
-]
+DEMOS = kf.demos.__all__  # every demo the course ships
 SLIDERS = (widgets.IntSlider, widgets.FloatSlider, widgets.FloatLogSlider)
 
 
