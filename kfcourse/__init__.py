@@ -20,6 +20,7 @@ from .models import (
     range_bearing,
     range_bearing_jacobian,
     unicycle,
+    unicycle_control_jacobian,
     unicycle_jacobian,
     wrap_angle,
 )
@@ -35,6 +36,7 @@ __all__ = [
     "range_bearing",
     "range_bearing_jacobian",
     "unicycle",
+    "unicycle_control_jacobian",
     "unicycle_jacobian",
     "wrap_angle",
 ]

@@ -23,6 +23,7 @@ __all__ = [
     "range_bearing_mean",
     "range_bearing_residual",
     "unicycle",
+    "unicycle_control_jacobian",
     "unicycle_jacobian",
     "wrap_angle",
 ]
@@ -192,6 +193,46 @@ def unicycle_jacobian(state, u, dt) -> np.ndarray:
     half = 0.5 * w * dt
     d = V * dt * np.sinc(half / np.pi)
     return np.array([[1.0, 0.0, -d * math.sin(th + half)], [0.0, 1.0, d * math.cos(th + half)], [0.0, 0.0, 1.0]])
+
+
+def unicycle_control_jacobian(state, u, dt) -> np.ndarray:
+    r"""Jacobian :math:`V = \partial g / \partial (V, \omega)` of :func:`unicycle`: how each control moves the pose.
+
+    With :math:`h = \omega\Delta t/2`, :math:`s = \sin h / h`, :math:`d = V\Delta t\, s`, :math:`\varphi = \theta + h`:
+
+    .. math:: V = \begin{bmatrix}
+                  \Delta t\, s\cos\varphi & \tfrac{\Delta t}{2}(V\Delta t\, s'\cos\varphi - d\sin\varphi) \\
+                  \Delta t\, s\sin\varphi & \tfrac{\Delta t}{2}(V\Delta t\, s'\sin\varphi + d\cos\varphi) \\
+                  0 & \Delta t \end{bmatrix},
+              \qquad s' = \frac{\cos h - s}{h} \to -\frac{h}{3} \text{ as } h \to 0
+
+    It carries odometry noise into the pose: :math:`R = V M V^\top`.  Introduced in chapter 10.
+
+    Parameters
+    ----------
+    state : array_like, shape (3,)
+    u : array_like, shape (2,)
+    dt : float
+
+    Returns
+    -------
+    ndarray, shape (3, 2)
+    """
+    s_, (V, w), dt = _pose_control(state, u, dt)
+    if s_.ndim != 1:
+        raise ValueError(f"state must have shape (3,), got {s_.shape}")
+    h = 0.5 * w * dt
+    s = float(np.sinc(h / np.pi))  # sin(h) / h
+    ds = (math.cos(h) - s) / h if abs(h) > 1e-3 else -h / 3  # ds/dh; the series near 0 avoids 0/0
+    d, phi = V * dt * s, s_[2] + h
+    c, n = math.cos(phi), math.sin(phi)
+    return np.array(
+        [
+            [dt * s * c, 0.5 * dt * (V * dt * ds * c - d * n)],
+            [dt * s * n, 0.5 * dt * (V * dt * ds * n + d * c)],
+            [0.0, dt],
+        ]
+    )
 
 
 def _offset(state, landmark):

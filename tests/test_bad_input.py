@@ -206,7 +206,7 @@ CASES: list[tuple[str, Callable[[], object], str]] = [
     ],
     *[
         (f"{fn.__name__}/{label}", (lambda fn=fn, s=s, u=u, dt=dt: fn(s, u, dt)), arg)
-        for fn in (kf.unicycle, kf.unicycle_jacobian)
+        for fn in (kf.unicycle, kf.unicycle_jacobian, kf.unicycle_control_jacobian)
         for label, s, u, dt, arg in [
             ("state wrong length", [0.0, 0.0], [0.5, 0.0], 1.0, "state"),
             ("u wrong length", POSE, [0.5], 1.0, "u"),

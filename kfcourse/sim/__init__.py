@@ -14,7 +14,8 @@ from .hallway import (
     start_cell,
 )
 from .line import LineRun, simulate_line
-from .robot import DEFAULT_LANDMARKS, RobotRun, loop_controls, simulate_robot
+from .localization import LoopRun, landmark_loop, process_noise_of_odometry
+from .robot import DEFAULT_LANDMARKS, RobotRun, loop_controls, readings, simulate_robot
 from .target import (
     TargetEstimates,
     TargetRun,
@@ -35,6 +36,7 @@ __all__ = [
     "EkfRun",
     "HallwayRun",
     "LineRun",
+    "LoopRun",
     "RobotRun",
     "TargetEstimates",
     "TargetRun",
@@ -46,6 +48,7 @@ __all__ = [
     "filter_tracks",
     "flipped_bearing_jacobian",
     "hallway_doors",
+    "landmark_loop",
     "loop_controls",
     "monte_carlo_drift",
     "motion_kernel",
@@ -53,7 +56,9 @@ __all__ = [
     "nees",
     "nees_band",
     "process_noise",
+    "process_noise_of_odometry",
     "read_door",
+    "readings",
     "run_ekf",
     "simulate_hallway",
     "simulate_line",

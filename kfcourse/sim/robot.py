@@ -125,6 +125,40 @@ def loop_controls(
     return np.array(lap * laps, dtype=float)
 
 
+def readings(truth, landmarks, sensor_range: float, range_std: float, bearing_std: float, eps):
+    r"""Noisy range-bearing readings of every landmark within range of each true pose.
+
+    :math:`z_{k,j} = h(x_k, m_j) + (\sigma_r \epsilon_{k,j,0},\, \sigma_\phi \epsilon_{k,j,1})`, bearing
+    wrapped to :math:`(-\pi, \pi]`, kept where the true range is at most ``sensor_range``.
+    Introduced in chapter 7.
+
+    Parameters
+    ----------
+    truth : ndarray, shape (T, 3)
+        True poses.
+    landmarks : ndarray, shape (L, 2)
+    sensor_range, range_std, bearing_std : float
+        Checked by the caller.
+    eps : ndarray, shape (T, L, 2)
+        Standard normal draws.
+
+    Returns
+    -------
+    z : ndarray, shape (T, L, 2)
+        Readings ``[r, phi]``; zeros where not visible.
+    visible : ndarray, shape (T, L), bool
+    """
+    z = np.zeros((len(truth), len(landmarks), 2))
+    visible = np.zeros((len(truth), len(landmarks)), dtype=bool)
+    for j, mj in enumerate(landmarks):
+        h = range_bearing(truth, mj)  # (T, 2): [r, phi] from every true pose to landmark j
+        noisy = h + [range_std, bearing_std] * eps[:, j]  # z = h(x, m_j) + noise
+        noisy[:, 1] = wrap_angle(noisy[:, 1])
+        visible[:, j] = h[:, 0] <= sensor_range
+        z[visible[:, j], j] = noisy[visible[:, j]]
+    return z, visible
+
+
 def simulate_robot(
     u=None,
     dt: float = 0.2,
@@ -206,14 +240,7 @@ def simulate_robot(
         truth[k] = pose
     odometry = u + [v_std, omega_std] * e  # u~_k = u_k + noise
 
-    z = np.zeros((n_steps, n_marks, 2))
-    visible = np.zeros((n_steps, n_marks), dtype=bool)
-    for j in range(n_marks):
-        h = range_bearing(truth, m[j])  # (T, 2): [r, phi] from every true pose to landmark j
-        noisy = h + [range_std, bearing_std] * eps[:, j]  # z = h(x, m_j) + noise
-        noisy[:, 1] = wrap_angle(noisy[:, 1])
-        visible[:, j] = h[:, 0] <= sensor_range
-        z[visible[:, j], j] = noisy[visible[:, j]]
+    z, visible = readings(truth, m, sensor_range, range_std, bearing_std, eps)
 
     return RobotRun(
         t=read_only(dt * np.arange(1, n_steps + 1)),

@@ -591,6 +591,19 @@ def test_unicycle_closed_form_quarter_circle():
     np.testing.assert_allclose(G, [[1, 0, -2 / math.pi], [0, 1, 2 / math.pi], [0, 0, 1]], atol=1e-15)
 
 
+def test_unicycle_control_jacobian_closed_forms():
+    # straight ahead, theta = 0, V = 0.5, dt = 1: speed moves x by dt; the turn rate swings the chord,
+    # dy/domega = (dt/2) V dt = 0.25, and turns the heading by dt
+    V = kf.unicycle_control_jacobian([0.0, 0.0, 0.0], [0.5, 0.0], 1.0)
+    np.testing.assert_allclose(V, [[1.0, 0.0], [0.0, 0.25], [0.0, 1.0]], atol=1e-15)
+    # the quarter circle: x' = y' = (V/omega)(1 - 0) with omega = pi/2, so dx'/dV = dy'/dV = 2/pi;
+    # dx'/domega = d/domega [V sin(omega)/omega] = V (omega cos omega - sin omega)/omega^2 = -4/pi^2,
+    # dy'/domega = d/domega [V (1 - cos omega)/omega] = V (omega sin omega - 1 + cos omega)/omega^2 = 2/pi - 4/pi^2
+    V = kf.unicycle_control_jacobian([0.0, 0.0, 0.0], [1.0, math.pi / 2], 1.0)
+    c = 4 / math.pi**2
+    np.testing.assert_allclose(V, [[2 / math.pi, -c], [2 / math.pi, 2 / math.pi - c], [0.0, 1.0]], atol=1e-15)
+
+
 def test_wrap_angle_closed_form():
     assert kf.wrap_angle(1.5 * math.pi) == pytest.approx(-0.5 * math.pi, abs=1e-15)
     assert kf.wrap_angle(-math.pi) == math.pi  # the interval is (-pi, pi]

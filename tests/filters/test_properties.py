@@ -190,6 +190,18 @@ def test_unicycle_jacobian_equals_numeric(pose, V, omega, dt):
     np.testing.assert_allclose(G, J, rtol=1e-6, atol=1e-6)
 
 
+@settings(max_examples=150, deadline=None)
+@given(pose=poses, V=reals(-5, 5), omega=omegas, dt=reals(1e-3, 2.0))
+@example(pose=np.array([1.0, 2.0, 0.3]), V=2.0, omega=5e-324, dt=1.0)  # smallest subnormal
+@example(pose=np.array([1.0, 2.0, 0.3]), V=2.0, omega=2e-3, dt=1.0)  # just past the series' switch
+def test_unicycle_control_jacobian_equals_numeric(pose, V, omega, dt):
+    u = np.array([V, omega])
+    Vu = kf.unicycle_control_jacobian(pose, u, dt)
+    J = kf.numeric_jacobian(lambda c: kf.unicycle(pose, c, dt), u, residual=pose_residual)
+    assert Vu.shape == J.shape == (3, 2)
+    np.testing.assert_allclose(Vu, J, rtol=1e-6, atol=1e-6)
+
+
 # ---------------------------------------------------------------- Bayes filter
 @st.composite
 def probability_vectors(draw, min_size=1, max_size=20):

@@ -1,0 +1,142 @@
+"""The landmark localization loop (chapters 8-10): its data, its switches and its honesty."""
+
+from __future__ import annotations
+
+import re
+
+import numpy as np
+import pytest
+
+import kfcourse as kf
+from kfcourse.sim.localization import SIG0
+
+
+@pytest.fixture(scope="module")
+def ekf_run():
+    return kf.sim.landmark_loop(0)
+
+
+def test_data_are_simulate_robots_step_for_step(ekf_run):
+    robot = kf.sim.simulate_robot(seed=0)
+    np.testing.assert_allclose(ekf_run.truth, robot.truth, atol=1e-12)
+    np.testing.assert_array_equal(ekf_run.odometry, robot.odometry)
+    np.testing.assert_array_equal(ekf_run.z, robot.z)
+    np.testing.assert_array_equal(ekf_run.used, robot.visible)  # no dropout, no gate: every reading in range
+    assert not ekf_run.rejected.any()
+
+
+def test_both_filters_see_the_same_world_and_end_near_the_truth(ekf_run):
+    ukf_run = kf.sim.landmark_loop(0, filter="ukf")
+    for name in ("truth", "odometry", "z", "used"):
+        np.testing.assert_array_equal(getattr(ukf_run, name), getattr(ekf_run, name))
+    for run in (ekf_run, ukf_run):
+        assert run.error.max() < 0.3
+        assert run.share_inside >= 0.95
+    assert not np.array_equal(ukf_run.mu, ekf_run.mu)  # two filters, not one twice
+
+
+def test_record_is_read_only_and_consistent(ekf_run):
+    T, L = ekf_run.t.size, ekf_run.landmarks.shape[0]
+    assert ekf_run.mu.shape == ekf_run.mu_bar.shape == (T, 3)
+    assert ekf_run.Sig.shape == ekf_run.Sig_bar.shape == (T, 3, 3)
+    assert ekf_run.used.shape == ekf_run.rejected.shape == (T, L)
+    with pytest.raises(ValueError):
+        ekf_run.mu[0, 0] = 1.0
+    np.testing.assert_array_equal(ekf_run.Sig0, SIG0)
+    e = np.linalg.norm(ekf_run.truth[:, :2] - ekf_run.mu[:, :2], axis=1)
+    np.testing.assert_allclose(ekf_run.error, e)
+    Sxy = ekf_run.Sig[:, :2, :2]
+    np.testing.assert_allclose(ekf_run.area, np.pi * np.sqrt(np.linalg.det(Sxy)))
+    # an update never makes the filter less sure: det Sig <= det Sig_bar at every step
+    assert np.all(np.linalg.det(ekf_run.Sig) <= np.linalg.det(ekf_run.Sig_bar) * (1 + 1e-9))
+
+
+def test_dropout_blinds_exactly_its_window():
+    run = kf.sim.landmark_loop(0, dropout=(40, 80))
+    assert not run.used[40:80].any()
+    assert run.used[:40].any(axis=1).all() and run.used[80:].any(axis=1).all()
+    free = kf.sim.landmark_loop(0)
+    np.testing.assert_array_equal(run.mu[:40], free.mu[:40])  # before the window nothing differs
+
+
+def test_noise_scales_the_world_and_the_filter_together():
+    base, loud = kf.sim.landmark_loop(0), kf.sim.landmark_loop(0, motion_noise=2.0, sensor_noise=3.0)
+    loop = kf.sim.loop_controls(dt=base.dt)
+    np.testing.assert_allclose(loud.odometry - loop, 2.0 * (base.odometry - loop), atol=1e-12)  # the same draws
+    seen = base.used
+    # the range noise is three times the default's, draw for draw
+    k, j = np.nonzero(seen)
+    clean = np.array([kf.range_bearing(base.truth[a], base.landmarks[b])[0] for a, b in zip(k, j, strict=True)])
+    np.testing.assert_allclose(loud.z[k, j, 0] - clean, 3.0 * (base.z[k, j, 0] - clean), atol=1e-12)
+
+
+def test_kidnapping_sets_the_robot_down_half_a_lap_on():
+    free = kf.sim.landmark_loop(0)
+    k0, T = 50, free.t.size
+    run = kf.sim.landmark_loop(0, kidnap=k0)
+    np.testing.assert_array_equal(run.truth[:k0], free.truth[:k0])
+    jump = np.linalg.norm(run.truth[k0, :2] - run.truth[k0 - 1, :2])
+    assert jump > 3.0  # carried across the loop, not driven
+    half = T // 2
+    later = (np.arange(k0, T) + half) % T
+    np.testing.assert_allclose(run.truth[k0:, :2], free.truth[later, :2], atol=1e-9)  # on the same loop
+
+
+def test_gated_filter_stays_confidently_wrong_after_a_kidnapping():
+    run = kf.sim.landmark_loop(0, kidnap=50, gate=3.03)
+    assert run.rejected[50:].any(axis=1).mean() > 0.8  # what it sees does not fit where it thinks it is
+    assert run.error[-1] > 2.0
+    assert not run.inside[60:].any()  # and its ellipse never admits it
+    assert np.sqrt(run.Sig[-1, 0, 0]) < 0.5
+
+
+def test_a_gate_at_the_default_run_rejects_almost_nothing():
+    run = kf.sim.landmark_loop(0, gate=3.03)
+    assert kf.sim.landmark_loop(0).used.sum() == 228  # readings in range over the lap
+    assert run.rejected.sum() <= 8  # a gate at 3.03 sigma turns away 1 % of true readings: 2.3 expected
+    assert run.share_inside >= 0.95
+
+
+@pytest.mark.parametrize("filter", ["ekf", "ukf"])
+@pytest.mark.parametrize("motion_noise", [0.1, 10.0])
+@pytest.mark.parametrize("sensor_noise", [0.1, 10.0])
+def test_noise_extremes_stay_finite(filter, motion_noise, sensor_noise):
+    run = kf.sim.landmark_loop(
+        0, filter=filter, motion_noise=motion_noise, sensor_noise=sensor_noise, dropout=(30, 70), gate=3.03
+    )
+    for name in ("mu", "Sig", "mu_bar", "Sig_bar", "error", "area"):
+        assert np.isfinite(getattr(run, name)).all(), name
+    assert np.all(np.linalg.eigvalsh(run.Sig) > 0)
+
+
+def test_process_noise_of_odometry_maps_the_control_noise():
+    # straight ahead along +x, dt = 1, V = 0.5: speed noise moves x, turn-rate noise swings y and theta
+    R = kf.sim.process_noise_of_odometry([0.0, 0.0, 0.0], [0.5, 0.0], 1.0, np.diag([0.04, 0.01]))
+    Vu = np.array([[1.0, 0.0], [0.0, 0.25], [0.0, 1.0]])
+    np.testing.assert_allclose(R, Vu @ np.diag([0.04, 0.01]) @ Vu.T, atol=1e-15)
+    assert np.linalg.matrix_rank(R) == 2
+
+
+@pytest.mark.parametrize(
+    ("kwargs", "name"),
+    [
+        ({"filter": "pf"}, "filter"),
+        ({"dropout": (80, 40)}, "dropout"),
+        ({"dropout": 5}, "dropout"),
+        ({"dropout": (-1, 4)}, "dropout[0]"),
+        ({"motion_noise": 0.0}, "motion_noise"),
+        ({"motion_noise": 1e-9}, "motion_noise"),
+        ({"sensor_noise": 101.0}, "sensor_noise"),
+        ({"sensor_noise": float("nan")}, "sensor_noise"),
+        ({"kidnap": 10_000}, "kidnap"),
+        ({"kidnap": 1.5}, "kidnap"),
+        ({"wrap_bearing": "yes"}, "wrap_bearing"),
+        ({"gate": 0.0}, "gate"),
+        ({"laps": 0}, "laps"),
+        ({"sensor_range": -1.0}, "sensor_range"),
+        ({"landmarks": [[1.0, 2.0, 3.0]]}, "landmarks"),
+    ],
+)
+def test_bad_input_names_the_argument(kwargs, name):
+    with pytest.raises(ValueError, match=f"^{re.escape(name)} must"):
+        kf.sim.landmark_loop(0, **kwargs)
