@@ -96,7 +96,7 @@ class CheckResult:
         return self.message
 
     def _repr_html_(self) -> str:
-        colour = "#1b7f5f" if self.passed else ("#b35900" if self.mistake or self.details else "#555555")
+        colour = "#1b7f5f" if self.passed else ("#b35900" if self.details else "#555555")  # pass, fail, not yet
         parts = [f'<p style="color:{colour}"><b>{html.escape(self.headline)}</b></p>']
         if self.details:
             parts.append(f"<pre>{html.escape(self.details)}</pre>")
@@ -208,9 +208,11 @@ def _named(value, returns):
     return list(zip(returns, parts, strict=True)) if parts is not None else [("returned", value)]
 
 
-def _where(error: Exception) -> str:
-    """The line of code that raised ``error``."""
+def _where(error: Exception, fn: Callable) -> str:
+    """The line of ``fn``'s own code that raised ``error`` (the deepest one, if it calls itself)."""
     frames = traceback.extract_tb(error.__traceback__)
+    own = getattr(getattr(fn, "__code__", None), "co_filename", None)
+    frames = [f for f in frames if f.filename == own] or frames[-1:]
     if not frames:
         return ""
     last = frames[-1]
@@ -268,7 +270,7 @@ def run_check(
         expected = case.call(reference)
         if outcome[0] == "raised":
             error = outcome[1]
-            what = f"it raised {type(error).__name__}: {error}"
+            what = f"it raised {type(error).__name__}: {str(error).rstrip('.')}"
         else:
             what = problem(expected, outcome[1], returns)
             if what is None:
@@ -277,7 +279,7 @@ def run_check(
         details = "inputs:\n" + _block(list(case.inputs.items()))
         details += "\nexpected:\n" + _block(_named(expected, returns))
         if outcome[0] == "raised":
-            details += _where(outcome[1])
+            details += _where(outcome[1], student_fn)
         else:
             details += "\ngot:\n" + _block(_named(outcome[1], returns))
         mistake, hint = None, f"No known mistake gives this answer. Compare your code with {where}."
