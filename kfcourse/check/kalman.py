@@ -85,6 +85,12 @@ def kf_1d_step(student_fn, seed: int = 0) -> CheckResult:
 
 
 # ---------------------------------------------------------------------------- fuse
+def _precision_fusion(mu1, var1, mu2, var2):
+    """Inverse-variance fusion of chapter 4: precisions add, each mean weighted by its precision."""
+    precision = 1 / var1 + 1 / var2
+    return (mu1 / var1 + mu2 / var2) / precision, 1 / precision
+
+
 def fuse(student_fn, seed: int = 0) -> CheckResult:
     """Check your scalar ``fuse(mu1, var1, mu2, var2)`` against :func:`kfcourse.fuse`.
 
@@ -120,10 +126,7 @@ def fuse(student_fn, seed: int = 0) -> CheckResult:
         ),
         Variant(
             "std_not_var",
-            lambda m1, v1, m2, v2: (
-                (m1 / v1**2 + m2 / v2**2) / (1 / v1**2 + 1 / v2**2),
-                1 / np.sqrt(1 / v1**2 + 1 / v2**2),
-            ),
+            lambda m1, v1, m2, v2: _precision_fusion(m1, v1**2, m2, v2**2),
             "var1 and var2 are already variances: the precisions are 1/var1 and 1/var2, not 1/var1².",
         ),
         Variant(

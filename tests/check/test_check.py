@@ -168,6 +168,11 @@ def fuse_own_weights(mu1, var1, mu2, var2):
     return (var1 * mu1 + var2 * mu2) / (var1 + var2), 1 / (1 / var1 + 1 / var2)  # wrong: weights swapped
 
 
+def fuse_squares(mu1, var1, mu2, var2):
+    w1, w2 = 1 / var1**2, 1 / var2**2  # wrong: var1 and var2 are already variances
+    return (w1 * mu1 + w2 * mu2) / (w1 + w2), 1 / (w1 + w2)
+
+
 def fuse_adds(mu1, var1, mu2, var2):
     K = var1 / (var1 + var2)
     return mu1 + K * (mu2 - mu1), var1 + var2  # wrong: variances add in a predict, not in a fusion
@@ -292,6 +297,7 @@ WRONG = [
     ("kf_1d_step", kf_1d_squares_noise, "std_not_var"),
     ("kf_1d_step", kf_1d_a_once, "a_not_squared"),
     ("fuse", fuse_own_weights, "wrong_weights"),
+    ("fuse", fuse_squares, "std_not_var"),
     ("fuse", fuse_adds, "adds_variances"),
     ("kf_step", kf_step_swapped, "swapped_R_Q"),
     ("kf_step", kf_step_no_transpose, "missing_transpose"),
@@ -347,6 +353,16 @@ def test_not_yet_is_no_failure():
     result = kf.check.kf_step(my_kf_step)
     assert result.passed is False and result.mistake is None
     assert "Not yet" in result.message and "my_kf_step" in result.message
+
+
+def test_a_function_written_only_in_part_is_not_yet_done():
+    def walls_only(belief, kernel, boundary="wall"):
+        if boundary == "wrap":
+            raise NotImplementedError("rings come later")
+        return hand_bayes_predict(belief, kernel, boundary)
+
+    result = kf.check.bayes_predict(walls_only)
+    assert result.passed is False and result.mistake is None and "Not yet" in result.message
 
 
 def test_a_function_that_raises_gets_a_clear_verdict():
