@@ -12,7 +12,8 @@ Every checker returns a :class:`CheckResult` with ``passed`` (bool), ``mistake``
 still raises ``NotImplementedError`` gets "not yet" (``passed=False``,
 ``mistake=None``).
 
-Introduced in chapter 1 (each chapter from 1 to 9 ends with its own exercises).
+Introduced in chapter 1; chapters 1, 3, 4, 5, 7, 8 and 9 end with exercises, and
+``notebooks/solutions.ipynb`` has one way to write each.
 """
 
 from ._core import MISTAKES, CheckResult

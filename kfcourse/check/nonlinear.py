@@ -14,6 +14,7 @@ LANDMARK = np.array([4.0, 6.0])  # ... and landmark (4, 6)
 
 
 def _wrap(a):
+    """Wrap into [−π, π) (every case stays clear of ±π, where this and (−π, π] differ)."""
     return (a + np.pi) % (2 * np.pi) - np.pi
 
 
