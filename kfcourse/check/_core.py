@@ -265,7 +265,7 @@ def run_check(
     for number, case in enumerate(cases, start=1):
         outcome = _quietly(student_fn, case)
         if outcome[0] == "raised" and isinstance(outcome[1], NotImplementedError):
-            headline = f"⏳ Not yet: {who} raises NotImplementedError. Write its body, then run this cell again."
+            headline = f"✎ Not yet: {who} raises NotImplementedError. Write its body, then run this cell again."
             return CheckResult(False, None, headline, headline)
         expected = case.call(reference)
         if outcome[0] == "raised":

@@ -63,7 +63,7 @@ def sigma_points(student_fn, seed: int = 0) -> CheckResult:
             Case(f"random: n = {n}, λ = {lam:.2f}", mu=rng.normal(size=n), Sig=random_covariance(rng, n), lam=lam)
         )
     where = (
-        "chapter 9, sigma points: L L^T = (n + λ)Σ with L = np.linalg.cholesky((n + λ) Σ); χ₀ = μ, "
+        "chapter 9, sigma points: L Lᵀ = (n + λ)Σ with L = np.linalg.cholesky((n + λ) Σ); χ₀ = μ, "
         "χᵢ = μ + (column i of L), χₙ₊ᵢ = μ − (column i of L); w₀ = λ/(n + λ), wᵢ = 1/(2(n + λ))"
     )
     variants = [
