@@ -27,7 +27,7 @@ from .models import (
 
 __version__ = "0.1.0"
 
-_LAZY = ("demos", "plots", "sim")
+_LAZY = ("check", "demos", "plots", "sim")
 
 __all__ = [
     *_filters_all,

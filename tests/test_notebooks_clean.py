@@ -16,6 +16,7 @@ import pytest
 ROOT = Path(__file__).resolve().parents[1]
 NOTEBOOKS = sorted((ROOT / "notebooks").glob("*.ipynb"))
 MARK = "# NBVAL_CHECK_OUTPUT"
+EXTRA = {"solutions.ipynb"}  # not a chapter: the exercises' solutions, a section per chapter
 
 
 def cells(path: Path):
@@ -26,7 +27,7 @@ def cells(path: Path):
 def test_there_are_notebooks():
     assert len(NOTEBOOKS) >= 5
     for path in NOTEBOOKS:
-        assert re.fullmatch(r"\d\d_[a-z0-9_]+\.ipynb", path.name), path.name
+        assert re.fullmatch(r"\d\d_[a-z0-9_]+\.ipynb", path.name) or path.name in EXTRA, path.name
 
 
 @pytest.mark.parametrize("path", NOTEBOOKS, ids=lambda p: p.stem)
@@ -64,9 +65,8 @@ def test_structure(path):
     text = "\n".join(md)
     assert re.search(r"(?i)you will learn", text), "no 'what you will learn'"
     assert re.search(r"(?i)#+ *recap", text), "no recap section"
-    number = int(path.name[:2])
-    existing = {int(p.name[:2]) for p in NOTEBOOKS}
-    for neighbour in (number - 1, number + 1):
+    existing = {int(p.name[:2]) for p in NOTEBOOKS if p.name not in EXTRA}
+    for neighbour in (int(path.name[:2]) - 1, int(path.name[:2]) + 1) if path.name not in EXTRA else ():
         if neighbour in existing:
             assert re.search(rf"\]\(\s*{neighbour:02d}_[a-z0-9_]+\.ipynb\s*\)", text), f"no link to chapter {neighbour}"
     for target in re.findall(r"\]\(\s*([^)\s]+\.ipynb)", text):
