@@ -123,6 +123,9 @@ def test_app_shows_prose_and_a_live_demo_without_code(browser, app, report):
     context = browser.new_context(viewport={"width": 1200, "height": 1400})
     errors: list[str] = []
     try:
+        # Only this machine's server: the badge images and anything else from the web are not fetched.
+        local = f"http://127.0.0.1:{app['port']}/"
+        context.route("**/*", lambda route: route.continue_() if route.request.url.startswith(local) else route.abort())
         page = context.new_page()
         page.on("pageerror", lambda e: errors.append(str(e)))
         page.goto(app["url"], timeout=RENDER_TIMEOUT_MS)
