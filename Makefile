@@ -27,6 +27,11 @@ lab: $(STAMP)
 	@$(BIN)/python tools/course.py lab --port $(PORT) --work '$(WORK)'
 
 # One chapter as an app (Voila), on 127.0.0.1 with a token: make app CH=03
+ifneq ($(filter app,$(MAKECMDGOALS)),)
+ifeq ($(strip $(CH)),)
+$(error make app needs a chapter: make app CH=03)
+endif
+endif
 app: $(STAMP)
 	@$(BIN)/python tools/course.py app --port $(APP_PORT) --chapter '$(CH)'
 

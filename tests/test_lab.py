@@ -326,3 +326,11 @@ def test_lab_serves_the_working_copy_and_saving_never_touches_the_tracked_notebo
         assert response.status == 200
     assert "a student's run" in (lab["work"] / name).read_text(encoding="utf-8")
     assert tracked_hashes() == lab["before"], "the tracked notebooks changed while the course was used"
+
+
+def test_binder_gets_the_same_jupyterlab_settings():
+    """Binder (and a hub image built with repo2docker) install the page config `make lab` uses."""
+    config = json.loads((course.JUPYTER_CONFIG / "labconfig" / "page_config.json").read_text(encoding="utf-8"))
+    assert config["disabledExtensions"] == {"@jupyterlab/apputils-extension:announcements": True}
+    post = (ROOT / "binder" / "postBuild").read_text(encoding="utf-8")
+    assert "cp binder/jupyter-config/labconfig/page_config.json" in post
