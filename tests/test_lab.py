@@ -37,7 +37,7 @@ START_TIMEOUT_S = 120
 # --------------------------------------------------------------------------- the working copy
 
 
-def fake_originals(folder: Path, names=("00_start", "01_next")) -> Path:
+def fake_originals(folder: Path, names=("00_start", "01_next", "solutions")) -> Path:
     folder.mkdir(parents=True, exist_ok=True)
     for name in names:
         (folder / f"{name}.ipynb").write_text(f'{{"original": "{name}"}}\n', encoding="utf-8")
@@ -48,7 +48,7 @@ def test_working_copy_is_made_once_and_never_overwritten(tmp_path):
     originals = fake_originals(tmp_path / "notebooks")
     work = tmp_path / "my-notebooks"
     copied = course.make_working_copy(originals, work)
-    assert [p.name for p in copied] == ["00_start.ipynb", "01_next.ipynb"]
+    assert [p.name for p in copied] == ["00_start.ipynb", "01_next.ipynb", "solutions.ipynb"]
     assert (work / "00_start.ipynb").read_bytes() == (originals / "00_start.ipynb").read_bytes()
 
     (work / "00_start.ipynb").write_text("the student's own work", encoding="utf-8")
@@ -74,7 +74,7 @@ def test_restore_one_chapter_keeps_the_students_version(tmp_path):
     backups = list((work / "backup").glob("01_next-*.ipynb"))
     assert len(backups) == 1 and backups[0].read_text(encoding="utf-8") == "changed 01_next.ipynb"
 
-    assert len(course.restore(originals, work)) == 2  # every chapter
+    assert len(course.restore(originals, work)) == 3  # every notebook
     assert (work / "00_start.ipynb").read_bytes() == (originals / "00_start.ipynb").read_bytes()
     # 01 was already the original: nothing new to keep
     assert len(list((work / "backup").glob("01_next-*.ipynb"))) == 1
@@ -121,7 +121,7 @@ def this_venv() -> list[str]:
 
 
 def tracked_hashes() -> dict[str, str]:
-    return {p.name: hashlib.sha256(p.read_bytes()).hexdigest() for p in course.chapters(ROOT / "notebooks")}
+    return {p.name: hashlib.sha256(p.read_bytes()).hexdigest() for p in course.notebooks(ROOT / "notebooks")}
 
 
 def test_make_restore_brings_back_one_chapter(tmp_path):
@@ -311,7 +311,7 @@ def test_lab_serves_the_working_copy_and_saving_never_touches_the_tracked_notebo
     status, body = get(base, auth)
     assert status == 200
     served = sorted(item["name"] for item in json.loads(body)["content"] if item["type"] == "notebook")
-    assert served == sorted(lab["before"]), "the server does not serve the working copy of every chapter"
+    assert served == sorted(lab["before"]), "the server does not serve the working copy of every notebook"
 
     # What JupyterLab's autosave does after a student ran a cell: PUT the notebook with outputs.
     name = "00_the_problem.ipynb"

@@ -47,6 +47,11 @@ STOP_TIMEOUT_S = 15
 # --------------------------------------------------------------------------- the working copy
 
 
+def notebooks(folder: Path) -> list[Path]:
+    """Every notebook in ``folder``: the chapters and the others (the solutions)."""
+    return sorted(folder.glob("*.ipynb"))
+
+
 def chapters(folder: Path) -> list[Path]:
     """The chapter notebooks ``NN_name.ipynb`` in ``folder``, in order."""
     return sorted(folder.glob("[0-9][0-9]_*.ipynb"))
@@ -71,13 +76,13 @@ def find_chapter(folder: Path, chapter: str) -> Path:
 
 
 def make_working_copy(originals: Path = ORIGINALS, work: Path = WORK) -> list[Path]:
-    """Copy every chapter that ``work`` lacks from ``originals``; never overwrite one.
+    """Copy every notebook that ``work`` lacks from ``originals``; never overwrite one.
 
     Returns the notebooks copied (none once the copy is complete).
     """
     work.mkdir(parents=True, exist_ok=True)
     copied = []
-    for original in chapters(originals):
+    for original in notebooks(originals):
         target = work / original.name
         if not target.exists():
             shutil.copyfile(original, target)
@@ -86,12 +91,12 @@ def make_working_copy(originals: Path = ORIGINALS, work: Path = WORK) -> list[Pa
 
 
 def restore(originals: Path = ORIGINALS, work: Path = WORK, chapter: str | None = None) -> list[Path]:
-    """Put the original of one chapter (or of every chapter) back into the working copy.
+    """Put the original of one chapter (or of every notebook) back into the working copy.
 
     A working notebook that differs from its original is first moved to
     ``work/backup/<name>-<date>-<time>.ipynb``.  Returns the notebooks restored.
     """
-    picked = [find_chapter(originals, chapter)] if chapter not in (None, "") else chapters(originals)
+    picked = [find_chapter(originals, chapter)] if chapter not in (None, "") else notebooks(originals)
     work.mkdir(parents=True, exist_ok=True)
     stamp = datetime.now().strftime("%Y%m%d-%H%M%S")
     restored = []
@@ -172,7 +177,7 @@ def tool(name: str) -> str:
 def lab(port: int, work: Path) -> int:
     copied = make_working_copy(ORIGINALS, work)
     if copied:
-        print(f"  kfcourse: copied {len(copied)} chapter(s) into {work} (your own copy: edit and save freely)")
+        print(f"  kfcourse: copied {len(copied)} notebook(s) into {work} (your own copy: edit and save freely)")
     token = secrets.token_hex(24)
     command = [
         tool("jupyter"),
