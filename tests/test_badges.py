@@ -124,3 +124,20 @@ def test_the_repository_is_named_once():
     readme = (ROOT / "README.md").read_text(encoding="utf-8")
     outside_links = readme.replace(f"mybinder.org/v2/gh/{repo}/", "")
     assert f"github.com/{repo}" not in outside_links
+
+
+def test_links_for_a_class_at_a_release_tag(capsys):
+    """The README's instructors' recipe: every chapter's two links at a tag, printed, nothing written."""
+    before = {p: p.read_bytes() for p in [ROOT / "README.md", *NOTEBOOKS]}
+    assert badges.main(["--print", "--ref", "v1.0"]) == 0
+    links = binder_links(capsys.readouterr().out)
+    assert {ref for _, ref, _, _ in links} == {"v1.0"}
+    assert sorted((view, target) for _, _, view, target in links) == sorted(
+        (view, f"notebooks/{p.name}") for p in NOTEBOOKS for view in ("lab/tree", "voila/render")
+    )
+    assert {p: p.read_bytes() for p in before} == before
+    teaching = (ROOT / "README.md").read_text(encoding="utf-8").split("## Teaching a class", 1)
+    assert len(teaching) == 2, "README.md has no 'Teaching a class' section"
+    section = teaching[1].split("\n## ", 1)[0]
+    for needed in ("python tools/badges.py --print --ref", "jupyter-repo2docker", "make site"):
+        assert needed in section, f"the 'Teaching a class' section does not mention {needed}"

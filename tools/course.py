@@ -139,7 +139,10 @@ def serve(command: list[str], env: dict[str, str], probe: str, headers: dict[str
         deadline = time.monotonic() + START_TIMEOUT_S
         while not answers(probe, headers):
             if server.poll() is not None:
-                print(f"\n  kfcourse: the server stopped (exit code {server.returncode}); see its messages above.")
+                print(
+                    f"\n  kfcourse: the server stopped (exit code {server.returncode}); see its messages above."
+                    "\n  Port already in use? Pick another: make lab PORT=8890, or make app CH=NN APP_PORT=8870."
+                )
                 return server.returncode or 1
             if time.monotonic() > deadline:
                 print(f"\n  kfcourse: the server did not answer in {START_TIMEOUT_S} s; stopping it.")
