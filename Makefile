@@ -1,14 +1,19 @@
 # Two commands for a fresh machine with python3 and make:
 #   make lab    set everything up and open the course in JupyterLab
 #   make test   set everything up and run every test
-PYTHON ?= python3
-VENV   ?= .venv
-BIN    := $(VENV)/bin
-PORT   ?= 8888
-STAMP  := $(VENV)/.kfcourse-installed
-ROOT_FLAG := $(if $(filter 0,$(shell id -u)),--allow-root,)
+# and for students:
+#   make app CH=03       one chapter as an app (Voila: prose and live demos, no code)
+#   make restore CH=03   put chapter 3's original back into my-notebooks/ (no CH: every chapter)
+PYTHON   ?= python3
+VENV     ?= .venv
+BIN      := $(VENV)/bin
+PORT     ?= 8888
+APP_PORT ?= 8866
+WORK     ?= my-notebooks
+CH       ?=
+STAMP    := $(VENV)/.kfcourse-installed
 
-.PHONY: lab test lint bench notebooks pins clean
+.PHONY: lab app restore test lint bench notebooks pins clean
 
 $(STAMP): binder/requirements.txt requirements-dev.txt pyproject.toml
 	$(PYTHON) -m venv $(VENV)
@@ -16,14 +21,24 @@ $(STAMP): binder/requirements.txt requirements-dev.txt pyproject.toml
 	$(BIN)/python -m pip install --quiet --disable-pip-version-check --no-deps -e .
 	@touch $@
 
+# JupyterLab on 127.0.0.1 with a token, over the student's own copy $(WORK)/ (made on the first
+# run, never overwritten); prints the address to open once the server answers.
 lab: $(STAMP)
-	@echo ""
-	@echo "  kfcourse: open  http://127.0.0.1:$(PORT)/lab/tree/00_the_problem.ipynb  in your browser"
-	@echo "  (Ctrl-C here stops the server)"
-	@echo ""
-	$(BIN)/jupyter lab --no-browser --ServerApp.ip=127.0.0.1 --ServerApp.port=$(PORT) \
-	  --ServerApp.port_retries=0 --IdentityProvider.token='' \
-	  --PasswordIdentityProvider.hashed_password='' --ServerApp.root_dir=notebooks $(ROOT_FLAG)
+	@$(BIN)/python tools/course.py lab --port $(PORT) --work '$(WORK)'
+
+# One chapter as an app (Voila), on 127.0.0.1 with a token: make app CH=03
+ifneq ($(filter app,$(MAKECMDGOALS)),)
+ifeq ($(strip $(CH)),)
+$(error make app needs a chapter: make app CH=03)
+endif
+endif
+app: $(STAMP)
+	@$(BIN)/python tools/course.py app --port $(APP_PORT) --chapter '$(CH)'
+
+# The original of chapter CH (of every chapter without CH) back into $(WORK)/; the replaced
+# version is kept in $(WORK)/backup/.
+restore:
+	@$(PYTHON) tools/course.py restore --work '$(WORK)' --chapter '$(CH)'
 
 test: $(STAMP) lint
 	$(BIN)/pytest -m "not browser" -n 2 --dist loadfile --nbval-lax --nbval-current-env \

@@ -1,0 +1,337 @@
+"""`make lab`, `make restore` and the student's working copy.
+
+The working copy is made once and never overwritten; `make restore` brings back an
+original and keeps the student's version.  Then the real `make lab` is started on a free
+port (in this test environment's own venv, which make is told not to rebuild) and
+checked as a student meets it: the address is printed only once the server answers, it
+holds a token and the server refuses requests without it, it listens on 127.0.0.1 only,
+JupyterLab's news pop-up is off, and saving a notebook (what autosave does) writes the
+working copy, never the tracked notebooks.
+"""
+
+from __future__ import annotations
+
+import hashlib
+import json
+import os
+import re
+import shutil
+import signal
+import socket
+import subprocess
+import sys
+import threading
+import time
+import urllib.error
+import urllib.request
+from pathlib import Path
+
+import pytest
+
+from tools import course
+
+ROOT = Path(__file__).resolve().parents[1]
+START_TIMEOUT_S = 120
+
+
+# --------------------------------------------------------------------------- the working copy
+
+
+def fake_originals(folder: Path, names=("00_start", "01_next", "solutions")) -> Path:
+    folder.mkdir(parents=True, exist_ok=True)
+    for name in names:
+        (folder / f"{name}.ipynb").write_text(f'{{"original": "{name}"}}\n', encoding="utf-8")
+    return folder
+
+
+def test_working_copy_is_made_once_and_never_overwritten(tmp_path):
+    originals = fake_originals(tmp_path / "notebooks")
+    work = tmp_path / "my-notebooks"
+    copied = course.make_working_copy(originals, work)
+    assert [p.name for p in copied] == ["00_start.ipynb", "01_next.ipynb", "solutions.ipynb"]
+    assert (work / "00_start.ipynb").read_bytes() == (originals / "00_start.ipynb").read_bytes()
+
+    (work / "00_start.ipynb").write_text("the student's own work", encoding="utf-8")
+    assert course.make_working_copy(originals, work) == []
+    assert (work / "00_start.ipynb").read_text(encoding="utf-8") == "the student's own work"
+
+    fake_originals(originals, ["02_later"])  # a chapter that lands after the first run
+    assert [p.name for p in course.make_working_copy(originals, work)] == ["02_later.ipynb"]
+    assert (work / "00_start.ipynb").read_text(encoding="utf-8") == "the student's own work"
+
+
+def test_restore_one_chapter_keeps_the_students_version(tmp_path):
+    originals = fake_originals(tmp_path / "notebooks")
+    work = tmp_path / "my-notebooks"
+    course.make_working_copy(originals, work)
+    for name in ("00_start.ipynb", "01_next.ipynb"):
+        (work / name).write_text(f"changed {name}", encoding="utf-8")
+
+    restored = course.restore(originals, work, chapter="1")
+    assert [p.name for p in restored] == ["01_next.ipynb"]
+    assert (work / "01_next.ipynb").read_bytes() == (originals / "01_next.ipynb").read_bytes()
+    assert (work / "00_start.ipynb").read_text(encoding="utf-8") == "changed 00_start.ipynb"
+    backups = list((work / "backup").glob("01_next-*.ipynb"))
+    assert len(backups) == 1 and backups[0].read_text(encoding="utf-8") == "changed 01_next.ipynb"
+
+    assert len(course.restore(originals, work)) == 3  # every notebook
+    assert (work / "00_start.ipynb").read_bytes() == (originals / "00_start.ipynb").read_bytes()
+    # 01 was already the original: nothing new to keep
+    assert len(list((work / "backup").glob("01_next-*.ipynb"))) == 1
+
+
+@pytest.mark.parametrize("chapter", ["x", "3a", "99"])
+def test_unknown_chapter_is_refused(tmp_path, chapter):
+    originals = fake_originals(tmp_path / "notebooks")
+    with pytest.raises(ValueError, match="chapter"):
+        course.restore(originals, tmp_path / "work", chapter=chapter)
+
+
+# --------------------------------------------------------------------------- through make
+
+
+def make_command() -> str:
+    found = shutil.which("make")
+    if found is None:
+        message = "`make` is missing; the make targets cannot be tested"
+        if os.environ.get("CI") == "true":
+            pytest.fail(message, pytrace=False)
+        pytest.skip(message)
+    return found
+
+
+def make_env(tmp_path: Path) -> dict[str, str]:
+    """No make flags from an outer `make test`, no token or Jupyter state of the user's."""
+    env = {k: v for k, v in os.environ.items() if k not in ("MAKEFLAGS", "MFLAGS", "MAKELEVEL", "JUPYTER_TOKEN")}
+    for name, sub in [
+        ("JUPYTER_RUNTIME_DIR", "runtime"),
+        ("JUPYTER_CONFIG_DIR", "config"),
+        ("JUPYTERLAB_SETTINGS_DIR", "settings"),
+        ("JUPYTERLAB_WORKSPACES_DIR", "workspaces"),
+    ]:
+        (tmp_path / sub).mkdir(parents=True, exist_ok=True)
+        env[name] = str(tmp_path / sub)
+    return env
+
+
+def this_venv() -> list[str]:
+    """make variables that run the targets in this test's own environment, never rebuilding it."""
+    venv = Path(sys.prefix)
+    return [f"--assume-old={venv / '.kfcourse-installed'}", f"VENV={venv}"]
+
+
+def tracked_hashes() -> dict[str, str]:
+    return {p.name: hashlib.sha256(p.read_bytes()).hexdigest() for p in course.notebooks(ROOT / "notebooks")}
+
+
+def test_make_restore_brings_back_one_chapter(tmp_path):
+    make = make_command()
+    work = tmp_path / "my-notebooks"
+    course.make_working_copy(ROOT / "notebooks", work)
+    original = course.find_chapter(ROOT / "notebooks", "3")
+    (work / original.name).write_text("{}", encoding="utf-8")
+    result = subprocess.run(
+        [make, "--no-print-directory", "restore", f"WORK={work}", "CH=03"],
+        cwd=ROOT,
+        env=make_env(tmp_path),
+        capture_output=True,
+        text=True,
+        timeout=60,
+    )
+    assert result.returncode == 0, result.stdout + result.stderr
+    assert (work / original.name).read_bytes() == original.read_bytes()
+    assert [p.read_text(encoding="utf-8") for p in (work / "backup").iterdir()] == ["{}"]
+
+
+# --------------------------------------------------------------------------- the real server
+
+
+def free_port() -> int:
+    with socket.socket(socket.AF_INET, socket.SOCK_STREAM) as s:
+        s.bind(("127.0.0.1", 0))
+        return s.getsockname()[1]
+
+
+def get(url: str, headers: dict[str, str] | None = None) -> tuple[int, bytes]:
+    request = urllib.request.Request(url, headers=headers or {})
+    try:
+        with urllib.request.urlopen(request, timeout=30) as response:
+            return response.status, response.read()
+    except urllib.error.HTTPError as error:
+        with error:
+            return error.code, error.read()
+
+
+class NoRedirect(urllib.request.HTTPRedirectHandler):
+    def redirect_request(self, *args, **kwargs):
+        return None
+
+
+class Started:
+    """A make target that serves: its output lines, and the printed address, tried the moment it appears."""
+
+    def __init__(self, command, cwd, env, url_pattern: str):
+        self.lines: list[str] = []
+        self.url: str | None = None
+        self.first_try: tuple[int, bytes] | str | None = None
+        self.pattern = re.compile(url_pattern)
+        self.proc = subprocess.Popen(
+            command,
+            cwd=cwd,
+            env=env,
+            stdin=subprocess.DEVNULL,
+            stdout=subprocess.PIPE,
+            stderr=subprocess.STDOUT,
+            text=True,
+            start_new_session=True,  # its own process group, stopped as a whole
+        )
+        self.reader = threading.Thread(target=self._read, daemon=True)
+        self.reader.start()
+
+    def _read(self) -> None:
+        for line in self.proc.stdout:
+            self.lines.append(line.rstrip("\n"))
+            match = self.pattern.search(line)
+            if match and self.url is None:
+                try:
+                    self.first_try = get(match[0])  # at once: the address must already answer
+                except (urllib.error.URLError, OSError) as error:
+                    self.first_try = f"{type(error).__name__}: {error}"
+                self.url = match[0]
+
+    def wait_for_url(self, timeout_s: float) -> str:
+        deadline = time.monotonic() + timeout_s
+        while self.url is None:
+            if self.proc.poll() is not None:
+                self.reader.join(timeout=5)
+                if self.url is not None:
+                    break
+                pytest.fail(f"exited with {self.proc.returncode} before printing an address:\n{self.tail()}")
+            if time.monotonic() > deadline:
+                pytest.fail(f"no address printed in {timeout_s} s:\n{self.tail()}")
+            time.sleep(0.1)
+        return self.url
+
+    def tail(self, n: int = 40) -> str:
+        return "\n".join(self.lines[-n:])
+
+    def stop(self) -> None:
+        for sig, wait_s in ((signal.SIGTERM, 20), (signal.SIGKILL, 10)):
+            try:
+                os.killpg(self.proc.pid, sig)
+            except ProcessLookupError:
+                break
+            try:
+                self.proc.wait(timeout=wait_s)
+                break
+            except subprocess.TimeoutExpired:
+                continue
+        self.reader.join(timeout=5)
+        self.proc.stdout.close()
+
+
+def listening_addresses(group: int, port: int) -> set[str]:
+    """The local addresses the processes of a process group listen on at ``port``."""
+    import psutil
+
+    found = set()
+    for proc in psutil.process_iter():
+        try:
+            if os.getpgid(proc.pid) != group:
+                continue
+            for conn in proc.net_connections(kind="inet"):
+                if conn.status == psutil.CONN_LISTEN and conn.laddr.port == port:
+                    found.add(conn.laddr.ip)
+        except (psutil.Error, ProcessLookupError, PermissionError):
+            continue
+    return found
+
+
+@pytest.fixture(scope="module")
+def lab(tmp_path_factory):
+    make = make_command()
+    base = tmp_path_factory.mktemp("make-lab")
+    work = base / "my-notebooks"
+    port = free_port()
+    before = tracked_hashes()
+    started = Started(
+        [make, "--no-print-directory", *this_venv(), "lab", f"PORT={port}", f"WORK={work}"],
+        ROOT,
+        make_env(base),
+        rf"http://127\.0\.0\.1:{port}/\S*\?token=[0-9a-f]{{16,}}",
+    )
+    try:
+        url = started.wait_for_url(START_TIMEOUT_S)
+        token = re.search(r"\?token=([0-9a-f]+)", url)[1]
+        yield {"started": started, "url": url, "token": token, "port": port, "work": work, "before": before}
+    finally:
+        started.stop()
+    with socket.socket(socket.AF_INET, socket.SOCK_STREAM) as s:
+        assert s.connect_ex(("127.0.0.1", port)) != 0, "the server still answers after `make lab` was stopped"
+
+
+def test_lab_prints_the_address_once_the_server_answers(lab):
+    started = lab["started"]
+    assert lab["url"].startswith(f"http://127.0.0.1:{lab['port']}/lab/tree/00_the_problem.ipynb?token=")
+    first = started.first_try
+    assert isinstance(first, tuple), f"the printed address did not answer when it was printed: {first}"
+    assert first[0] == 200, f"the printed address answered {first[0]}"
+    printed = [line for line in started.lines if "?token=" in line and lab["token"] in line]
+    assert len(printed) == 1, "the address with the token is printed once"
+
+
+def test_lab_requires_the_token(lab):
+    base = f"http://127.0.0.1:{lab['port']}/"
+    assert get(base + "api/status")[0] == 403
+    assert get(base + "api/contents")[0] == 403
+    assert get(base + "api/status", {"Authorization": "token wrong" + lab["token"]})[0] == 403
+    assert get(base + "api/status", {"Authorization": f"token {lab['token']}"})[0] == 200
+    opener = urllib.request.build_opener(NoRedirect)
+    with pytest.raises(urllib.error.HTTPError) as page:
+        opener.open(base + "lab", timeout=30)
+    with page.value:
+        assert page.value.code == 302 and "/login" in page.value.headers["Location"]
+
+
+def test_lab_listens_on_loopback_only(lab):
+    assert listening_addresses(lab["started"].proc.pid, lab["port"]) == {"127.0.0.1"}
+
+
+def test_lab_news_popup_is_off(lab):
+    status, html = get(f"http://127.0.0.1:{lab['port']}/lab?token={lab['token']}")
+    assert status == 200
+    config = re.search(rb'<script id="jupyter-config-data" type="application/json">(.*?)</script>', html, re.S)
+    assert config, "no page config in the JupyterLab page"
+    disabled = json.loads(config[1])["disabledExtensions"]
+    assert "@jupyterlab/apputils-extension:announcements" in disabled
+
+
+def test_lab_serves_the_working_copy_and_saving_never_touches_the_tracked_notebooks(lab):
+    base = f"http://127.0.0.1:{lab['port']}/api/contents"
+    auth = {"Authorization": f"token {lab['token']}"}
+    status, body = get(base, auth)
+    assert status == 200
+    served = sorted(item["name"] for item in json.loads(body)["content"] if item["type"] == "notebook")
+    assert served == sorted(lab["before"]), "the server does not serve the working copy of every notebook"
+
+    # What JupyterLab's autosave does after a student ran a cell: PUT the notebook with outputs.
+    name = "00_the_problem.ipynb"
+    status, body = get(f"{base}/{name}?content=1", auth)
+    model = json.loads(body)["content"]
+    cell = next(c for c in model["cells"] if c["cell_type"] == "code")
+    cell["execution_count"] = 1
+    cell["outputs"] = [{"output_type": "stream", "name": "stdout", "text": "a student's run\n"}]
+    payload = json.dumps({"type": "notebook", "format": "json", "content": model}).encode()
+    request = urllib.request.Request(f"{base}/{name}", data=payload, method="PUT", headers=auth)
+    with urllib.request.urlopen(request, timeout=30) as response:
+        assert response.status == 200
+    assert "a student's run" in (lab["work"] / name).read_text(encoding="utf-8")
+    assert tracked_hashes() == lab["before"], "the tracked notebooks changed while the course was used"
+
+
+def test_binder_gets_the_same_jupyterlab_settings():
+    """Binder (and a hub image built with repo2docker) install the page config `make lab` uses."""
+    config = json.loads((course.JUPYTER_CONFIG / "labconfig" / "page_config.json").read_text(encoding="utf-8"))
+    assert config["disabledExtensions"] == {"@jupyterlab/apputils-extension:announcements": True}
+    post = (ROOT / "binder" / "postBuild").read_text(encoding="utf-8")
+    assert "cp binder/jupyter-config/labconfig/page_config.json" in post
