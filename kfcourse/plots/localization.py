@@ -106,10 +106,10 @@ def update_ellipse_chart(mu_bar, Sig_bar, mu, Sig, landmark, nsig: float = 2.0):
     ax.plot([mu_bar[0], m[0]], [mu_bar[1], m[1]], color=palette.INK, lw=1, ls=":", label="line of sight")
     covariance_ellipse(ax, mu_bar, Sig_bar[:2, :2], nsig=nsig, color=palette.PREDICTION, label="before (predicted)")
     covariance_ellipse(ax, mu, Sig[:2, :2], nsig=nsig, color=palette.ESTIMATE, label="after the update")
-    robot(ax, mu_bar, color=palette.PREDICTION, size=0.25, alpha=0.7)
-    robot(ax, mu, color=palette.ESTIMATE, size=0.25)
+    robot(ax, mu_bar, color=palette.PREDICTION, size=0.12, alpha=0.7)
+    robot(ax, mu, color=palette.ESTIMATE, size=0.12)
     ax.annotate(
-        "", xy=mu[:2], xytext=mu_bar[:2], arrowprops={"arrowstyle": "->", "color": palette.INK, "lw": 1.2}, zorder=4
+        "", xy=mu[:2], xytext=mu_bar[:2], arrowprops={"arrowstyle": "->", "color": palette.INK, "lw": 1.5}, zorder=5
     )
     landmarks(ax, [m], labels=["landmark"])
     ax.set_aspect("equal", adjustable="datalim")
