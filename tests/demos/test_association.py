@@ -6,6 +6,7 @@ import numpy as np
 import pytest
 from matplotlib.colors import to_rgba
 from matplotlib.patches import Polygon
+from matplotlib.path import Path
 
 import kfcourse as kf
 from kfcourse.demos.association import LEG_OPTIONS
@@ -45,6 +46,10 @@ def test_prompt_1_the_leg_is_rejected_at_the_default_gate():
     assert res.mu == pytest.approx(before)
     assert res.error == pytest.approx(0.07, abs=0.005)
     assert "rejected" in demo.children[2].value
+    leg_point = kf.plots.reading_points(demo.model.scan.mu_bar, demo.model.scan.z[-1])
+    hollow = demo.renderer.dynamic[4]  # rejected readings: hollow orange circles
+    assert np.asarray(hollow.get_offsets()) == pytest.approx(leg_point)
+    assert not any(Path(p.vertices).contains_points(leg_point)[0] for p in demo.renderer.dynamic[0].get_paths())
 
 
 def test_prompt_2_a_wide_gate_lets_the_leg_in_and_the_estimate_slides_off():
@@ -54,6 +59,8 @@ def test_prompt_2_a_wide_gate_lets_the_leg_in_and_the_estimate_slides_off():
     demo.controls["gate"].value = 5.0
     res = demo.model.result
     assert res.match[-1] == 3
+    leg_point = kf.plots.reading_points(demo.model.scan.mu_bar, demo.model.scan.z[-1])
+    assert Path(demo.renderer.dynamic[0].get_paths()[3].vertices).contains_points(leg_point)[0]  # inside gate 3
     assert res.error == pytest.approx(0.29, abs=0.005)
     assert res.error > 4 * kf.sim.gated_update(demo.model.scan, 3.0).error
     assert estimate_drawn(demo) == pytest.approx(res.mu[:2])
