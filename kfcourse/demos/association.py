@@ -133,13 +133,12 @@ def data_association(seed: int = 0) -> Demo:
         readout.value = _readout(model)
 
     caption = (
-        "<b>Data association.</b> Purple: the map's landmarks (squares, numbered), the predicted pose (triangle) "
-        "with its 2σ ellipse. Orange: this scan's readings, each drawn where it points from the predicted pose "
-        "(filled and joined to its landmark: accepted; hollow: rejected). Purple dashed: each landmark's gate, "
-        "the readings within γ standard deviations (Mahalanobis) of its predicted reading — the gate's ellipse in "
-        "(range, bearing) drawn from the predicted pose the same way, so a reading is accepted for a landmark "
-        "exactly when it falls inside that outline. Teal: the EKF estimate after the accepted readings, with its "
-        "2σ ellipse. Faint grey: the true pose. The slider sets the gate γ; the toggle adds a pedestrian's leg."
+        "<b>Data association.</b> Purple: the map (numbered squares) and the predicted pose with its 2σ ellipse; "
+        "purple dashed: each landmark's gate, the readings within γ standard deviations (Mahalanobis) of its "
+        "predicted reading, drawn like the readings. Orange: this scan's readings, each drawn where it points from "
+        "the predicted pose; filled and joined to a landmark if accepted, hollow if rejected. Teal: the EKF estimate "
+        "after the accepted readings, with its 2σ ellipse. Grey outline: the true pose. Slider: the gate γ; "
+        "toggle: add a pedestrian's leg to the scan."
     )
     return Demo(
         name="data-association",
