@@ -38,6 +38,7 @@ def test_the_leg_let_in_moves_the_estimate_away_from_the_truth(seed):
     assert tight.error < 0.15  # m: the honest readings alone put the robot right
     assert wide.error > 2.5 * tight.error
     assert wide.error > 0.25
+    assert np.linalg.det(wide.Sig[:2, :2]) < np.linalg.det(tight.Sig[:2, :2])  # further off, yet surer of itself
 
 
 def test_the_estimate_with_good_readings_beats_the_prediction():
