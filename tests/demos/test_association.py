@@ -100,3 +100,16 @@ def test_gates_drawn_around_every_landmark_and_they_grow_with_the_slider():
         assert (g > s).all()
     centres = [p.vertices.mean(axis=0) for p in gates.get_paths()]
     assert np.linalg.norm(np.array(centres) - demo.model.scan.landmarks, axis=1).max() < 1.5
+
+
+@pytest.mark.parametrize("leg", [NO_LEG, LEG])
+@pytest.mark.parametrize("gate", [1.0, 6.0])
+def test_readout_and_picture_finite_at_the_extremes(leg, gate):
+    demo = kf.demos.data_association(seed=0)
+    demo.controls["leg"].value = leg
+    demo.controls["gate"].value = gate
+    readout = demo.children[2].value.lower()
+    assert "nan" not in readout and "inf" not in readout
+    assert np.isfinite(demo.model.result.mu).all() and np.isfinite(demo.model.result.Sig).all()
+    for path in demo.renderer.dynamic[0].get_paths():  # the gates, however wide
+        assert np.isfinite(path.vertices).all()
