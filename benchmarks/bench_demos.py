@@ -5,9 +5,10 @@ Run by hand (not part of the test suite):
     .venv/bin/python benchmarks/bench_demos.py
 
 For each demo, every slider is swept back and forth across its range, every
-button pressed, and the animation frame stepped; each change is timed from the
-moment the control's value is set until the demo's image widget holds the new
-PNG (observers run synchronously, so that is the time the kernel is busy).
+button pressed, every row of toggle buttons switched through its options, and
+the animation frame stepped; each change is timed from the moment the control's
+value is set until the demo's image widget holds the new PNG (observers run
+synchronously, so that is the time the kernel is busy).
 Targets: median <= 50 ms, p95 <= 100 ms.
 """
 
@@ -53,6 +54,11 @@ def measure(name: str) -> list[float]:
                     samples.append(timed(lambda c=control, v=value: setattr(c, "value", v)))
         elif isinstance(control, widgets.Button):
             samples += [timed(control.click) for _ in range(PRESSES)]
+        elif isinstance(control, widgets.ToggleButtons):  # every option in turn
+            options = list(control.options)
+            for i in range(1, PRESSES + 1):
+                option = options[i % len(options)]
+                samples.append(timed(lambda c=control, v=option: setattr(c, "value", v)))
     return samples
 
 

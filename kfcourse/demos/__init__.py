@@ -1,6 +1,7 @@
 """Interactive demos, one module each; every demo is a function returning an
 ipywidgets widget: ``kf.demos.hallway(seed=0)``."""
 
+from .association import data_association
 from .covariance import covariance_ellipse
 from .hallway import hallway
 from .linearization import linearization
@@ -12,6 +13,7 @@ from .trust import trust_slider
 
 __all__ = [
     "covariance_ellipse",
+    "data_association",
     "hallway",
     "linearization",
     "nees_panel",

@@ -24,6 +24,7 @@ from .artists import (
 from .bayes import bayes_cycle_chart
 from .charts import blend_variance_chart, convergence_chart, drift_chart, ellipse_shadow_chart, samples_chart
 from .ekf import jacobian_runs_chart, nonlinear_samples_chart
+from .localization import gate_outline, reading_points, update_ellipse_chart, wrap_runs_chart
 from .matrix import predict_update_chart
 from .runs import kf_run_chart
 from .style import FigureRenderer, new_figure
@@ -39,6 +40,7 @@ __all__ = [
     "drift_chart",
     "ellipse_shadow_chart",
     "gain_gauge",
+    "gate_outline",
     "gaussian_curve",
     "jacobian_runs_chart",
     "kf_run_chart",
@@ -47,12 +49,15 @@ __all__ = [
     "nonlinear_samples_chart",
     "palette",
     "predict_update_chart",
+    "reading_points",
     "robot",
     "samples_chart",
     "update_beams",
     "update_belief_bars",
     "update_covariance_ellipse",
+    "update_ellipse_chart",
     "update_gain_gauge",
     "update_gaussian_curve",
     "update_robot",
+    "wrap_runs_chart",
 ]

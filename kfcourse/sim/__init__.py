@@ -1,6 +1,7 @@
 """Seeded simulation engines.  Each returns an immutable run record (arrays over
 time), or is a pure function of its inputs and a seeded generator."""
 
+from .association import AssociationScan, GatedUpdate, association_scan, gated_update
 from .drift import bias_drift, drift_sigma, monte_carlo_drift
 from .ekf_runs import TWO_LANDMARKS, EkfRun, flipped_bearing_jacobian, run_ekf
 from .hallway import (
@@ -33,7 +34,9 @@ from .walk import simulate_walk
 __all__ = [
     "DEFAULT_LANDMARKS",
     "TWO_LANDMARKS",
+    "AssociationScan",
     "EkfRun",
+    "GatedUpdate",
     "HallwayRun",
     "LineRun",
     "LoopRun",
@@ -41,12 +44,14 @@ __all__ = [
     "TargetEstimates",
     "TargetRun",
     "TrackBatch",
+    "association_scan",
     "bias_drift",
     "door_likelihood",
     "drift_sigma",
     "filter_target",
     "filter_tracks",
     "flipped_bearing_jacobian",
+    "gated_update",
     "hallway_doors",
     "landmark_loop",
     "loop_controls",

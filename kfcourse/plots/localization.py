@@ -1,0 +1,162 @@
+"""Pictures of EKF localization on a known map (chapter 8): readings and gates in the plane,
+one update's ellipses, and runs with and without the bearing wrap."""
+
+from __future__ import annotations
+
+import numpy as np
+
+from .. import _validate as v
+from . import palette
+from .artists import covariance_ellipse, landmarks, robot
+from .style import new_figure
+
+
+def reading_points(pose, z) -> np.ndarray:
+    r"""Where readings put their objects in the plane, seen from ``pose``.
+
+    A reading :math:`(r, \phi)` taken at pose :math:`(x, y, \theta)` points at
+    :math:`(x + r\cos(\theta + \phi),\; y + r\sin(\theta + \phi))`.  Drawn from the
+    predicted pose, a reading lands on its landmark exactly when it equals the
+    landmark's predicted reading.  Introduced in chapter 8.
+
+    Parameters
+    ----------
+    pose : array_like, shape (3,)
+        ``[x, y, theta]``.
+    z : array_like, shape (K, 2) or (2,)
+        Readings ``[r, phi]``, one a row.
+
+    Returns
+    -------
+    ndarray, shape (K, 2)
+    """
+    x, y, theta = v.vector(pose, "pose", 3)
+    z = np.empty((0, 2)) if np.size(z) == 0 else v.matrix(z, "z", cols=2)
+    r, phi = z[:, 0], z[:, 1]
+    return np.column_stack([x + r * np.cos(theta + phi), y + r * np.sin(theta + phi)])
+
+
+def gate_outline(pose, z_hat, S, gate: float, n: int = 90) -> np.ndarray:
+    r"""A landmark's validation gate drawn in the plane.
+
+    The gate is the ellipse :math:`(z - \hat z)^\top S^{-1} (z - \hat z) = \gamma^2` in
+    reading space :math:`(r, \phi)`.  Each of its ``n`` boundary readings is drawn
+    with :func:`reading_points` from ``pose``, so a reading lies inside the gate
+    exactly when its point lies inside the outline.  Ranges below 0 do not exist
+    and are clipped to 0.  Introduced in chapter 8.
+
+    Parameters
+    ----------
+    pose : array_like, shape (3,)
+        The pose the readings are drawn from (the predicted pose).
+    z_hat : array_like, shape (2,)
+        The landmark's predicted reading ``[r, phi]``.
+    S : array_like, shape (2, 2)
+        Its innovation covariance.
+    gate : float
+        :math:`\gamma` (> 0), in standard deviations.
+    n : int
+        Boundary points (>= 8).
+
+    Returns
+    -------
+    ndarray, shape (n, 2)
+        A closed outline (the last point repeats the first).
+    """
+    z_hat = v.vector(z_hat, "z_hat", 2)
+    S = v.covariance(S, "S", 2)
+    gate = v.positive(gate, "gate", "a distance", "standard deviations")
+    n = v.whole(n, "n", 8)
+    t = np.linspace(0.0, 2 * np.pi, n)
+    L = np.linalg.cholesky(S)  # S = L L^T: the unit circle through L is the 1-sigma ellipse
+    boundary = z_hat + gate * (L @ np.vstack([np.cos(t), np.sin(t)])).T  # z = z_hat + gamma L [cos t, sin t]
+    boundary[:, 0] = np.maximum(boundary[:, 0], 0.0)  # no negative ranges
+    return reading_points(pose, boundary)
+
+
+def update_ellipse_chart(mu_bar, Sig_bar, mu, Sig, landmark, nsig: float = 2.0):
+    """Chapter 8: one EKF update from a single landmark, before and after.
+
+    The predicted pose and its ``nsig``-sigma position ellipse (purple), the
+    updated pose and its ellipse (teal), the landmark (purple square) and the
+    line of sight from the predicted pose to it (dotted).  The update moves the
+    pose toward the landmark and shrinks the ellipse along the line of sight.
+
+    Introduced in chapter 8.
+
+    Parameters
+    ----------
+    mu_bar, mu : array_like, shape (3,)
+        Pose before and after the update.
+    Sig_bar, Sig : array_like, shape (3, 3)
+        Their covariances.
+    landmark : array_like, shape (2,)
+    nsig : float
+        Size of the ellipses in standard deviations (> 0).
+
+    Returns
+    -------
+    matplotlib.figure.Figure
+    """
+    mu_bar, mu = v.vector(mu_bar, "mu_bar", 3), v.vector(mu, "mu", 3)
+    Sig_bar, Sig = v.covariance(Sig_bar, "Sig_bar", 3), v.covariance(Sig, "Sig", 3)
+    m = v.vector(landmark, "landmark", 2)
+    nsig = v.positive(nsig, "nsig", "a size", "standard deviations")
+    fig, ax = new_figure(6.0, 5.0)
+    ax.plot([mu_bar[0], m[0]], [mu_bar[1], m[1]], color=palette.INK, lw=1, ls=":", label="line of sight")
+    covariance_ellipse(ax, mu_bar, Sig_bar[:2, :2], nsig=nsig, color=palette.PREDICTION, label="before (predicted)")
+    covariance_ellipse(ax, mu, Sig[:2, :2], nsig=nsig, color=palette.ESTIMATE, label="after the update")
+    robot(ax, mu_bar, color=palette.PREDICTION, size=0.12, alpha=0.7)
+    robot(ax, mu, color=palette.ESTIMATE, size=0.12)
+    ax.annotate(
+        "", xy=mu[:2], xytext=mu_bar[:2], arrowprops={"arrowstyle": "->", "color": palette.INK, "lw": 1.5}, zorder=5
+    )
+    landmarks(ax, [m], labels=["landmark"])
+    ax.set_aspect("equal", adjustable="datalim")
+    ax.set_xlabel("x (m)")
+    ax.set_ylabel("y (m)")
+    ax.set_title(f"{nsig:g}-sigma position ellipses, before and after one reading", fontsize=10)
+    ax.legend(loc="upper left", fontsize=8)
+    return fig
+
+
+def wrap_runs_chart(wrapped, unwrapped, every: int = 15):
+    """Chapter 8: the same drive filtered with the bearing innovation wrapped and not wrapped.
+
+    Left and middle: the map (purple squares), the true path (grey), the estimate
+    (teal) with its 3-sigma position ellipse every ``every`` steps; one panel per
+    run, titled with its largest and final error.  Right: the position error of
+    both runs over time (solid: wrapped, dashed: not wrapped).
+
+    Introduced in chapter 8.
+
+    Parameters
+    ----------
+    wrapped, unwrapped : object with ``t, truth, landmarks, mu, Sig, error``
+        Run records such as the ones :func:`kfcourse.sim.landmark_loop` returns.
+    every : int
+        Steps between two drawn ellipses (>= 1).
+
+    Returns
+    -------
+    matplotlib.figure.Figure
+    """
+    every = v.whole(every, "every", 1)
+    fig, (ax_a, ax_b, ax_e) = new_figure(11.0, 3.9, ncols=3, gridspec_kw={"width_ratios": [1, 1, 1.1]})
+    for ax, run, name in ((ax_a, wrapped, "bearing innovation wrapped"), (ax_b, unwrapped, "not wrapped")):
+        ax.plot(run.truth[:, 0], run.truth[:, 1], color=palette.TRUTH, lw=2.5, label="truth")
+        ax.plot(run.mu[:, 0], run.mu[:, 1], color=palette.ESTIMATE, lw=1.5, label="EKF estimate")
+        for k in range(0, run.t.size, every):
+            covariance_ellipse(ax, run.mu[k, :2], run.Sig[k, :2, :2], nsig=3.0, lw=1.0)
+        landmarks(ax, run.landmarks)
+        ax.set_aspect("equal", adjustable="datalim")
+        ax.set_xlabel("x (m)")
+        ax.set_title(f"{name}\nlargest error {run.error.max():.2f} m, final {run.error[-1]:.2f} m", fontsize=10)
+    ax_a.set_ylabel("y (m)")
+    ax_a.legend(loc="upper left", fontsize=8)
+    ax_e.plot(wrapped.t, wrapped.error, color=palette.ESTIMATE, lw=2, label="wrapped")
+    ax_e.plot(unwrapped.t, unwrapped.error, color=palette.ESTIMATE, lw=2, ls="--", label="not wrapped")
+    ax_e.set_xlabel("time (s)")
+    ax_e.set_ylabel("position error (m)")
+    ax_e.legend(loc="upper left", fontsize=8)
+    return fig
