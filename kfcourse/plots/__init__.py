@@ -27,6 +27,7 @@ from .ekf import jacobian_runs_chart, nonlinear_samples_chart
 from .matrix import predict_update_chart
 from .runs import kf_run_chart
 from .style import FigureRenderer, new_figure
+from .ukf import filter_comparison_chart, transform_moments_chart
 
 __all__ = [
     "FigureRenderer",
@@ -38,6 +39,7 @@ __all__ = [
     "covariance_ellipse",
     "drift_chart",
     "ellipse_shadow_chart",
+    "filter_comparison_chart",
     "gain_gauge",
     "gaussian_curve",
     "jacobian_runs_chart",
@@ -49,6 +51,7 @@ __all__ = [
     "predict_update_chart",
     "robot",
     "samples_chart",
+    "transform_moments_chart",
     "update_beams",
     "update_belief_bars",
     "update_covariance_ellipse",
