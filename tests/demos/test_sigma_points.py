@@ -5,7 +5,6 @@ and each "Try this" prompt of the chapter, driven as the prose says."""
 from __future__ import annotations
 
 import itertools
-import re
 
 import numpy as np
 import pytest
