@@ -157,12 +157,10 @@ def sigma_points(seed: int = 0) -> Demo:
         )
 
     caption = (
-        "<b>Sigma points.</b> Purple (bottom): the input Gaussian N(m, s²) and its three sigma points, "
-        "m and m ± √(1+λ)·s (dot size: weight; an empty ring: weight 0); dotted, their climb up the curve f (black) "
-        "to the output axis. "
-        "Right: teal, the UKF's Gaussian from the three images (teal dots); orange dashed, the EKF's guess "
-        "through the tangent at m; grey, a histogram of the true output (the same seeded draws pushed through f). "
-        "Pick f, drag the mean m, the width s and the spread λ, and compare the numbers."
+        "<b>Sigma points.</b> Purple: the input N(m, s²) and its three sigma points m, m ± √(1+λ)·s "
+        "(dot size: weight; a ring: weight 0), carried up the curve f (black) along dotted paths. Right: teal, the "
+        "UKF's Gaussian from their images; orange dashed, the EKF's tangent at m and its Gaussian; grey, the sampled "
+        "true output. Controls: the function f, the input mean m and width s, the spread λ."
     )
     return Demo(
         name="sigma-points",

@@ -14,6 +14,7 @@ from matplotlib.patches import Polygon
 
 import kfcourse as kf
 from kfcourse.demos.linearization import FUNCTIONS
+from kfcourse.demos.sigma_points import X_RANGE, Y_LIMITS
 
 SQUARE, SINE, RANGE = "x²", "sin x", "range √(x² + 1)"
 TRUE_F = {SQUARE: lambda x: x * x, SINE: np.sin, RANGE: lambda x: np.sqrt(x * x + 1.0)}  # written out again here
@@ -125,6 +126,14 @@ def test_every_extreme_is_finite(function):
         assert lo <= chi.min() and chi.max() <= hi  # every sigma point stays in the picture
 
 
+def test_every_function_has_output_limits_that_hold_its_curve():
+    for name, (f, _df, _) in FUNCTIONS.items():
+        lo, hi = Y_LIMITS[name]
+        y = f(np.linspace(*X_RANGE, 200))
+        assert lo <= y.min() and y.max() <= hi
+    assert set(Y_LIMITS) == set(FUNCTIONS)
+
+
 def test_bad_lam_is_refused_by_the_model():
     model = kf.demos.sigma_points(seed=0).model
     model.set_lam(-1.0)
@@ -186,7 +195,7 @@ def test_try_the_range_to_a_landmark():
     rows = readout(demo)
     assert rows["UKF"][0] == pytest.approx(rows["sampled"][0], abs=0.01)
     assert rows["UKF"][1] == pytest.approx(rows["sampled"][1], abs=0.01)
-    assert rows["sampled"][0] - rows["EKF"][0] > 0.05
+    assert rows["sampled"][0] - rows["EKF"][0] == pytest.approx(0.07, abs=0.015)
     assert rows["EKF"][1] > rows["sampled"][1] + 0.1
 
 
