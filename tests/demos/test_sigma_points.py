@@ -100,8 +100,10 @@ def test_sampled_truth_is_within_monte_carlo_error_of_the_exact_moments(m, s):
 
 def test_ukf_mean_of_x_squared_is_exact_and_its_variance_short_by_s4():
     """For y = x² the unscented mean is m² + s² at every λ; the variance is 4 m² s² + λ s⁴."""
+    demo = kf.demos.sigma_points(seed=0)
     for m, s, lam in itertools.product((-2.0, 0.0, 1.3), (0.05, 0.6, 1.5), (0.0, 1.0, 2.0, 3.0)):
-        mean, var = demo_at(SQUARE, m, s, lam).model.ukf()
+        demo.controls["m"].value, demo.controls["s"].value, demo.controls["lam"].value = m, s, lam
+        mean, var = demo.model.ukf()
         assert mean == pytest.approx(m * m + s * s)
         assert var == pytest.approx(4 * m * m * s * s + lam * s**4)
 
