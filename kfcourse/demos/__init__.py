@@ -7,6 +7,7 @@ from .hallway import hallway
 from .linearization import linearization
 from .nees import nees_panel
 from .raw_vs_filtered import raw_vs_filtered
+from .sigma_points import sigma_points
 from .step_through import step_through
 from .tracker import tracker
 from .trust import trust_slider
@@ -18,6 +19,7 @@ __all__ = [
     "linearization",
     "nees_panel",
     "raw_vs_filtered",
+    "sigma_points",
     "step_through",
     "tracker",
     "trust_slider",

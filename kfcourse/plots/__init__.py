@@ -28,6 +28,7 @@ from .localization import gate_outline, reading_points, update_ellipse_chart, wr
 from .matrix import predict_update_chart
 from .runs import kf_run_chart
 from .style import FigureRenderer, new_figure
+from .ukf import filter_comparison_chart, transform_moments_chart
 
 __all__ = [
     "FigureRenderer",
@@ -39,6 +40,7 @@ __all__ = [
     "covariance_ellipse",
     "drift_chart",
     "ellipse_shadow_chart",
+    "filter_comparison_chart",
     "gain_gauge",
     "gate_outline",
     "gaussian_curve",
@@ -52,6 +54,7 @@ __all__ = [
     "reading_points",
     "robot",
     "samples_chart",
+    "transform_moments_chart",
     "update_beams",
     "update_belief_bars",
     "update_covariance_ellipse",

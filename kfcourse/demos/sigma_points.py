@@ -1,0 +1,184 @@
+"""Chapter 9: sigma points pushed through a curve, the UKF's Gaussian against the EKF's tangent guess."""
+
+from __future__ import annotations
+
+import ipywidgets as widgets
+import numpy as np
+from matplotlib.collections import LineCollection
+from matplotlib.patches import Polygon
+
+from ..filters.ukf import sigma_points as make_sigma_points
+from ..filters.ukf import unscented_1d
+from ..plots import palette
+from ..plots.style import FigureRenderer, fixed_width_ticks, new_figure
+from ._base import Demo, slider
+from .linearization import FUNCTIONS, LinearizationModel, _density
+
+N_SAMPLES = 20_000  # fixed standard-normal draws, rescaled by the sliders
+X_RANGE = (-5.0, 5.0)  # the sigma points reach m +- sqrt(1 + lam) s = 2 + 2 * 1.5 at the sliders' extremes
+N_BINS = 60
+# Output-axis limits for this demo's wider input range (the functions themselves are chapter 7's).
+Y_LIMITS = {"x²": (-1.0, 25.0), "sin x": (-1.5, 1.5), "range √(x² + 1)": (0.0, 5.5)}
+
+
+class SigmaPointsModel(LinearizationModel):
+    """Chapter 7's model (input N(m, s^2), a function f, its samples and the EKF's Gaussian)
+    plus the spread parameter lam and the UKF's answer.  Introduced in chapter 9."""
+
+    def __init__(self, seed: int = 0, m: float = 2.0, s: float = 1.0, lam: float = 0.0, function: str = "x²"):
+        super().__init__(seed=seed, m=m, s=s, function=function)
+        self.lam = lam
+        self.draws = np.random.default_rng(seed).standard_normal(N_SAMPLES)  # e ~ N(0, 1), fixed; more than chapter 7
+
+    def set_lam(self, lam: float) -> None:
+        self.lam = float(lam)
+
+    def sigma_points(self) -> tuple[np.ndarray, np.ndarray]:
+        """The three sigma points of N(m, s^2) and their (mean) weights, shapes (3,), (3,)."""
+        chi, wm, _wc = make_sigma_points(np.array([self.m]), np.array([[self.s * self.s]]), self.lam)
+        return chi[:, 0], wm
+
+    def ukf(self) -> tuple[float, float]:
+        """The UKF's output Gaussian: the unscented transform of N(m, s^2) through f."""
+        return unscented_1d(self.m, self.s * self.s, FUNCTIONS[self.function][0], self.lam)
+
+
+def sigma_points(seed: int = 0) -> Demo:
+    """Demo "sigma points on y = x²" (chapter 9): three sigma points of the input Gaussian
+    climb the curve; their images give the UKF's Gaussian, beside the EKF's tangent guess
+    and the sampled truth.
+
+    Returns
+    -------
+    Demo (an ipywidgets.VBox)
+    """
+    model = SigmaPointsModel(seed=seed)
+    fig, axes = new_figure(
+        8.4, 6.0, nrows=2, ncols=2, gridspec_kw={"width_ratios": [3, 1.4], "height_ratios": [3, 1.3]}
+    )
+    (ax_f, ax_out), (ax_in, ax_txt) = axes
+    ax_in.sharex(ax_f)
+    ax_out.sharey(ax_f)
+    ax_f.set_xlim(*X_RANGE)
+    ax_f.set_ylabel("output y = f(x)")
+    ax_in.set_xlabel("input x")
+    ax_in.set_ylabel("density\n(peak = 1)")
+    ax_out.set_xlabel("density (sampled peak = 1)")
+    ax_in.set_ylim(0.0, 1.15)  # densities drawn relative to a peak: the axes never rescale while dragging
+    ax_out.set_xlim(0.0, 1.6)
+    ax_txt.axis("off")
+    fixed_width_ticks(ax_f.yaxis, 5)
+
+    x = np.linspace(*X_RANGE, 500)
+    (curve,) = ax_f.plot(x, x, color=palette.INK, lw=1.5, label="f(x)")
+    (tangent,) = ax_f.plot(x, x, color=palette.MEASUREMENT, lw=1.6, ls="--", label="EKF: tangent at m")
+    guides = LineCollection([], colors=palette.PREDICTION, lw=0.9, linestyles=":")
+    ax_f.add_collection(guides)
+    on_curve = ax_f.scatter(
+        [0, 0, 0], [0, 0, 0], s=40, color=palette.PREDICTION, edgecolor=palette.PREDICTION, lw=1.5, zorder=3
+    )
+    ax_f.legend(loc="upper left", fontsize=9)
+    (inp,) = ax_in.plot(x, x, color=palette.PREDICTION, lw=2)
+    on_input = ax_in.scatter(
+        [0, 0, 0], [0, 0, 0], s=40, color=palette.PREDICTION, edgecolor=palette.PREDICTION, lw=1.5, zorder=3
+    )
+    hist = Polygon([[0, 0], [1, 1], [0, 1]], closed=True, facecolor=palette.TRUTH, alpha=0.45, lw=0, label="sampled")
+    ax_out.add_patch(hist)
+    (ukf,) = ax_out.plot([0, 1], [0, 1], color=palette.ESTIMATE, lw=2.2, label="UKF")
+    (ekf,) = ax_out.plot([0, 1], [0, 1], color=palette.MEASUREMENT, lw=1.8, ls="--", label="EKF")
+    on_output = ax_out.scatter(
+        [0, 0, 0], [0, 0, 0], s=40, color=palette.ESTIMATE, edgecolor=palette.ESTIMATE, lw=1.5, zorder=3
+    )
+    ax_out.legend(loc="upper right", fontsize=8)
+    # The readout: its labels are static (drawn once), only the numbers are redrawn, in the same monospace grid.
+    text_style = {"transform": ax_txt.transAxes, "ha": "left", "va": "top", "fontsize": 8.5, "family": "monospace"}
+    ax_txt.text(-0.12, 1.0, "sigma points\nweights\n\n\nsampled\nUKF\nEKF", **text_style)
+    ax_txt.text(-0.12, 1.0, "\n\n\n" + " " * 12 + "mean" + " " * 7 + "var", **text_style)
+    info = ax_txt.text(-0.12, 1.0, "", **text_style)
+    renderer = FigureRenderer(fig, [tangent, guides, on_curve, inp, on_input, hist, ukf, ekf, on_output, info])
+    shown = {"function": None}
+
+    def output_density(line, mean, var, top, lo, hi, grid):
+        if var > 1e-12 * (hi - lo) ** 2:
+            line.set_data(np.minimum(_density(grid, mean, var) / top, 2.0), grid)
+        else:  # no spread at all: a spike at the mean
+            line.set_data([0.0, 0.0, 2.0, 0.0, 0.0], [lo, mean, mean, mean, hi])
+
+    def draw() -> None:
+        f, df, _ = FUNCTIONS[model.function]
+        lo, hi = Y_LIMITS[model.function]
+        if shown["function"] != model.function:  # a new curve and output axis: redraw the background
+            curve.set_ydata(f(x))
+            ax_f.set_ylim(lo, hi)
+            shown["function"] = model.function
+            renderer.invalidate()
+        m, s = model.m, model.s
+        fm, slope = float(f(m)), float(df(m))
+        tangent.set_ydata(fm + slope * (x - m))  # f(m) + f'(m) (x - m)
+        inp.set_ydata(np.exp(-0.5 * (x - m) ** 2 / (s * s)))  # N(m, s^2) divided by its peak
+        chi, w = model.sigma_points()
+        Y = f(chi)  # the sigma points through the true f
+        on_input.set_offsets(np.column_stack([chi, np.exp(-0.5 * (chi - m) ** 2 / (s * s))]))
+        on_curve.set_offsets(np.column_stack([chi, Y]))
+        on_output.set_offsets(np.column_stack([np.full(3, 0.04), Y]))
+        sizes = 30.0 + 90.0 * np.abs(w)  # dot area grows with the weight
+        for dots, colour in (
+            (on_input, palette.PREDICTION),
+            (on_curve, palette.PREDICTION),
+            (on_output, palette.ESTIMATE),
+        ):
+            dots.set_sizes(sizes)
+            dots.set_facecolors([colour if wi > 0 else "white" for wi in w])  # a weight-0 point: an empty ring
+        guides.set_segments([[(c, lo), (c, y), (X_RANGE[1], y)] for c, y in zip(chi, Y, strict=True)])
+        # The sampled output as a sideways histogram on fixed bins over the output axis.
+        y = model.samples()
+        edges = np.linspace(lo, hi, N_BINS + 1)
+        counts, _ = np.histogram(y, bins=edges)
+        dens = counts / (y.size * (edges[1] - edges[0]))
+        top = max(float(dens.max()), 1e-12)  # the sampled peak: every output density is divided by it
+        hist.set_xy(np.column_stack([np.concatenate([[0.0], np.repeat(dens / top, 2), [0.0]]), np.repeat(edges, 2)]))
+        grid = np.linspace(lo, hi, 600)
+        mean_y, var_y = float(y.mean()), float(y.var())
+        mean_u, var_u = model.ukf()
+        mean_e, var_e = model.ekf()
+        output_density(ukf, mean_u, var_u, top, lo, hi, grid)
+        output_density(ekf, mean_e, var_e, top, lo, hi, grid)
+        order = [2, 0, 1]  # left to right: m - spread, m, m + spread
+        info.set_text(
+            " " * 12
+            + "".join(f"{chi[i]:6.2f}" for i in order)
+            + "\n"
+            + " " * 12
+            + "".join(f"{w[i]:6.2f}" for i in order)
+            + "\n\n\n"
+            + "\n".join(
+                f"{'':7}{mean:9.3f} {var:9.4f}" for mean, var in ((mean_y, var_y), (mean_u, var_u), (mean_e, var_e))
+            )
+        )
+
+    caption = (
+        "<b>Sigma points.</b> Purple: the input N(m, s²) and its three sigma points m, m ± √(1+λ)·s "
+        "(dot size: weight; a ring: weight 0), carried up the curve f (black) along dotted paths. Right: teal, the "
+        "UKF's Gaussian from their images; orange dashed, the EKF's tangent at m and its Gaussian; grey, the sampled "
+        "true output. Controls: the function f, the input mean m and width s, the spread λ."
+    )
+    return Demo(
+        name="sigma-points",
+        caption=caption,
+        model=model,
+        renderer=renderer,
+        draw=draw,
+        controls={
+            "function": (
+                widgets.ToggleButtons(options=list(FUNCTIONS), value=model.function, description="f(x)"),
+                model.set_function,
+            ),
+            "m": (slider(widgets.FloatSlider, "input mean m", model.m, -2.0, 2.0, 0.05), model.set_m),
+            "s": (slider(widgets.FloatSlider, "input width s", model.s, 0.05, 1.5, 0.05), model.set_s),
+            "lam": (
+                slider(widgets.FloatSlider, "spread λ", model.lam, 0.0, 3.0, 0.1, readout_format=".1f"),
+                model.set_lam,
+            ),
+        },
+        layout=["function", ["m", "s"], "lam"],
+    )

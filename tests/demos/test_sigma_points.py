@@ -1,0 +1,218 @@
+"""Chapter 9's sigma-points demo: its readout is the package's unscented transform, its
+"truth" is the exact output within Monte-Carlo error, it stays finite at every extreme,
+and each "Try this" prompt of the chapter, driven as the prose says."""
+
+from __future__ import annotations
+
+import itertools
+
+import numpy as np
+import pytest
+from matplotlib.collections import LineCollection, PathCollection
+from matplotlib.lines import Line2D
+from matplotlib.patches import Polygon
+
+import kfcourse as kf
+from kfcourse.demos.linearization import FUNCTIONS
+from kfcourse.demos.sigma_points import X_RANGE, Y_LIMITS
+
+SQUARE, SINE, RANGE = "x²", "sin x", "range √(x² + 1)"
+TRUE_F = {SQUARE: lambda x: x * x, SINE: np.sin, RANGE: lambda x: np.sqrt(x * x + 1.0)}  # written out again here
+
+
+def demo_at(function: str = SQUARE, m: float = 2.0, s: float = 1.0, lam: float = 0.0):
+    demo = kf.demos.sigma_points(seed=0)
+    demo.controls["function"].value = function
+    demo.controls["m"].value = m
+    demo.controls["s"].value = s
+    demo.controls["lam"].value = lam
+    return demo
+
+
+def readout(demo) -> dict[str, tuple[float, float]]:
+    """The (mean, var) rows of the readout the picture shows: static row labels, redrawn numbers."""
+    labels = demo.renderer.fig.axes[3].texts[0].get_text().split("\n")
+    numbers = demo.renderer.dynamic[-1].get_text().split("\n")
+    assert len(labels) == len(numbers)
+    return {name: tuple(float(x) for x in numbers[labels.index(name)].split()) for name in ("sampled", "UKF", "EKF")}
+
+
+def drawn(artist) -> np.ndarray:
+    """The coordinates an artist draws."""
+    if isinstance(artist, Line2D):
+        return np.asarray(artist.get_xydata(), float)
+    if isinstance(artist, LineCollection):
+        return np.concatenate(artist.get_segments())
+    if isinstance(artist, PathCollection):
+        return np.asarray(artist.get_offsets(), float)
+    if isinstance(artist, Polygon):
+        return np.asarray(artist.get_xy(), float)
+    raise AssertionError(f"unexpected artist {artist}")
+
+
+def exact_square(m: float, s: float) -> tuple[float, float]:
+    """Mean and variance of y = x² for x ~ N(m, s²): m² + s² and 4 m² s² + 2 s⁴."""
+    return m * m + s * s, 4 * m * m * s * s + 2 * s**4
+
+
+def test_first_frame_is_the_lessons_worked_example():
+    demo = kf.demos.sigma_points(seed=0)
+    model = demo.model
+    assert (model.function, model.m, model.s, model.lam) == (SQUARE, 2.0, 1.0, 0.0)
+    chi, w = model.sigma_points()
+    assert chi == pytest.approx([2.0, 3.0, 1.0]) and w == pytest.approx([0.0, 0.5, 0.5])
+    rows = readout(demo)
+    assert rows["UKF"] == (5.0, 16.0)
+    assert rows["EKF"] == (4.0, 16.0)
+    assert rows["sampled"] == pytest.approx((5.0, 18.0), rel=0.03)
+
+
+@pytest.mark.parametrize(
+    ("function", "m", "s", "lam"),
+    [(SQUARE, 2.0, 1.0, 0.0), (SQUARE, -1.35, 0.45, 2.3), (SINE, 1.5, 1.5, 0.0), (SINE, -0.6, 0.8, 3.0),
+     (RANGE, 0.0, 1.0, 2.0), (RANGE, 1.75, 0.2, 0.7)],
+)  # fmt: skip
+def test_ukf_readout_is_unscented_1d_at_the_slider_values(function, m, s, lam):
+    demo = demo_at(function, m, s, lam)
+    sliders = demo.controls
+    expected = kf.unscented_1d(sliders["m"].value, sliders["s"].value ** 2, TRUE_F[function], sliders["lam"].value)
+    assert demo.model.ukf() == pytest.approx(expected, rel=1e-12, abs=1e-12)
+    shown = readout(demo)["UKF"]
+    assert shown == pytest.approx(expected, abs=1e-3 + 1e-4)  # printed to 3 and 4 decimals
+    # The teal curve is N(mean, var) of that readout, drawn relative to the sampled peak: its peak sits at the mean.
+    dens, grid = demo.renderer.dynamic[6].get_data()
+    if expected[1] > 1e-9:
+        assert grid[np.argmax(dens)] == pytest.approx(expected[0], abs=2 * (grid[1] - grid[0]))
+
+
+@pytest.mark.parametrize(("m", "s"), [(2.0, 1.0), (0.0, 1.0), (-1.5, 0.5), (1.0, 1.5), (0.5, 0.05)])
+def test_sampled_truth_is_within_monte_carlo_error_of_the_exact_moments(m, s):
+    demo = demo_at(SQUARE, m, s)
+    y = demo.model.samples()
+    mean, var = exact_square(m, s)
+    se_mean = np.sqrt(var / y.size)
+    se_var = np.std((y - y.mean()) ** 2) / np.sqrt(y.size)
+    sampled_mean, sampled_var = demo.model.sampled()
+    assert abs(sampled_mean - mean) < 4 * se_mean
+    assert abs(sampled_var - var) < 4 * se_var
+    assert se_var < 0.05 * var  # the error bar itself is small: the test would see a wrong truth
+
+
+def test_ukf_mean_of_x_squared_is_exact_and_its_variance_short_by_s4():
+    """For y = x² the unscented mean is m² + s² at every λ; the variance is 4 m² s² + λ s⁴."""
+    demo = kf.demos.sigma_points(seed=0)
+    for m, s, lam in itertools.product((-2.0, 0.0, 1.3), (0.05, 0.6, 1.5), (0.0, 1.0, 2.0, 3.0)):
+        demo.controls["m"].value, demo.controls["s"].value, demo.controls["lam"].value = m, s, lam
+        mean, var = demo.model.ukf()
+        assert mean == pytest.approx(m * m + s * s)
+        assert var == pytest.approx(4 * m * m * s * s + lam * s**4)
+
+
+@pytest.mark.parametrize("function", list(FUNCTIONS))
+def test_every_extreme_is_finite(function):
+    demo = kf.demos.sigma_points(seed=0)
+    demo.controls["function"].value = function
+    c = demo.controls
+    for m, s, lam in itertools.product(
+        (c["m"].min, c["m"].max), (c["s"].min, c["s"].max), (c["lam"].min, c["lam"].max)
+    ):
+        c["m"].value, c["s"].value, c["lam"].value = m, s, lam
+        for artist in demo.renderer.dynamic[:-1]:
+            assert np.isfinite(drawn(artist)).all(), (function, m, s, lam, artist)
+        text = demo.renderer.dynamic[-1].get_text().lower()
+        assert "nan" not in text and "inf" not in text
+        rows = readout(demo)
+        assert all(np.isfinite(v).all() and v[1] >= 0 for v in rows.values())
+        chi, _ = demo.model.sigma_points()
+        lo, hi = demo.renderer.fig.axes[0].get_xlim()
+        assert lo <= chi.min() and chi.max() <= hi  # every sigma point stays in the picture
+
+
+def test_every_function_has_output_limits_that_hold_its_curve():
+    for name, (f, _df, _) in FUNCTIONS.items():
+        lo, hi = Y_LIMITS[name]
+        y = f(np.linspace(*X_RANGE, 200))
+        assert lo <= y.min() and y.max() <= hi
+    assert set(Y_LIMITS) == set(FUNCTIONS)
+
+
+def test_bad_lam_is_refused_by_the_model():
+    model = kf.demos.sigma_points(seed=0).model
+    model.set_lam(-1.0)
+    with pytest.raises(ValueError, match="lam"):
+        model.ukf()
+
+
+# --- the chapter's "Try this" prompts ---------------------------------------------------------------
+
+
+def test_try_widen_and_narrow_the_input():
+    """Prompt 1: from the first frame drag s to 1.5: the UKF's mean follows the truth to m² + s² = 6.25
+    while the EKF stays at 4, and the UKF's variance (36) falls well short of the true 46.1.
+    Drag s to 0.1: all three agree."""
+    demo = demo_at(SQUARE, 2.0, 1.5)
+    rows = readout(demo)
+    assert rows["UKF"] == pytest.approx((6.25, 36.0))
+    assert rows["EKF"] == pytest.approx((4.0, 36.0))
+    assert rows["sampled"][0] == pytest.approx(6.25, abs=0.1)
+    assert rows["sampled"][1] == pytest.approx(46.125, rel=0.05)
+    assert rows["sampled"][1] - rows["UKF"][1] > 8.0
+    demo.controls["s"].value = 0.1
+    rows = readout(demo)
+    for name in ("UKF", "EKF"):
+        assert rows[name][0] == pytest.approx(rows["sampled"][0], abs=0.02)
+        assert rows[name][1] == pytest.approx(rows["sampled"][1], rel=0.05)
+
+
+def test_try_lam_two_makes_the_variance_exact():
+    """Prompt 2: with x², λ = 2 makes the UKF's variance the exact 4 m² s² + 2 s⁴ (18 at the first frame)
+    at any m and s; λ = 3 overshoots."""
+    demo = demo_at(SQUARE, 2.0, 1.0, 2.0)
+    assert readout(demo)["UKF"] == pytest.approx((5.0, 18.0))
+    for m, s in ((-1.0, 0.5), (0.0, 1.5), (1.5, 1.2)):
+        demo.controls["m"].value, demo.controls["s"].value = m, s
+        assert readout(demo)["UKF"] == pytest.approx(exact_square(m, s), abs=1e-3)
+        assert readout(demo)["UKF"][1] == pytest.approx(readout(demo)["sampled"][1], rel=0.06)
+    demo.controls["m"].value, demo.controls["s"].value = 2.0, 1.0
+    demo.controls["lam"].value = 3.0
+    assert readout(demo)["UKF"][1] == pytest.approx(19.0)
+
+
+def test_try_the_bottom_of_the_bowl():
+    """Prompt 3: x², m = 0, s = 1: the EKF says mean 0, variance 0; the UKF at λ = 0 gets the mean 1 right
+    but also says variance 0 (both outer points land at height 1, the centre weighs 0); λ = 2 gives 2."""
+    demo = demo_at(SQUARE, 0.0, 1.0, 0.0)
+    rows = readout(demo)
+    assert rows["EKF"] == (0.0, 0.0)
+    assert rows["UKF"] == pytest.approx((1.0, 0.0), abs=1e-9)
+    assert rows["sampled"] == pytest.approx((1.0, 2.0), rel=0.05)
+    demo.controls["lam"].value = 2.0
+    assert readout(demo)["UKF"] == pytest.approx((1.0, 2.0))
+
+
+def test_try_the_range_to_a_landmark():
+    """Prompt 4: range, m = 2, s = 1: at λ = 2 the UKF's mean and variance agree with the samples to
+    about 0.01, while the EKF's mean is short by about 0.07 and its variance too wide."""
+    demo = demo_at(RANGE, 2.0, 1.0, 2.0)
+    rows = readout(demo)
+    assert rows["UKF"][0] == pytest.approx(rows["sampled"][0], abs=0.01)
+    assert rows["UKF"][1] == pytest.approx(rows["sampled"][1], abs=0.01)
+    assert rows["sampled"][0] - rows["EKF"][0] == pytest.approx(0.07, abs=0.015)
+    assert rows["EKF"][1] > rows["sampled"][1] + 0.1
+
+
+def test_try_sine_at_its_peak_the_ukf_is_an_approximation_too():
+    """Prompt 5: sin x, m = 1.5, s = 1.5: the EKF claims about 1.0 and is very sure; the UKF at λ = 0
+    says about 0.07, too low, with a tiny variance (its outer points land near 0.0 and 0.14); at λ = 2 its
+    mean (0.38) is close to the samples' 0.33, its variance too wide."""
+    demo = demo_at(SINE, 1.5, 1.5, 0.0)
+    rows = readout(demo)
+    assert rows["EKF"][0] == pytest.approx(1.0, abs=0.01)
+    assert rows["sampled"][0] == pytest.approx(0.33, abs=0.02)
+    assert rows["UKF"][0] == pytest.approx(0.07, abs=0.01) and rows["UKF"][1] < 0.01
+    assert rows["sampled"][1] > 0.3
+    demo.controls["lam"].value = 2.0
+    rows = readout(demo)
+    assert rows["UKF"][0] == pytest.approx(0.38, abs=0.01)
+    assert abs(rows["UKF"][0] - rows["sampled"][0]) < 0.1
+    assert rows["UKF"][1] > rows["sampled"][1] * 1.5

@@ -1,0 +1,71 @@
+"""Chapter 9's charts: the unscented transform against the samples, and the UKF beside the EKF."""
+
+from __future__ import annotations
+
+import math
+
+import numpy as np
+import pytest
+
+import kfcourse as kf
+from kfcourse.plots import palette
+
+
+@pytest.fixture(scope="module")
+def runs():
+    return kf.sim.landmark_loop(0, filter="ekf"), kf.sim.landmark_loop(0, filter="ukf")
+
+
+def lines_of(ax, colour):
+    return [line for line in ax.get_lines() if line.get_color() == colour]
+
+
+def test_moments_chart_draws_the_samples_and_both_gaussians():
+    y = np.random.default_rng(0).normal(2.0, 1.0, 50_000) ** 2
+    fig = kf.plots.transform_moments_chart(y, (5.0, 16.0), (4.0, 16.0), bins=50, y_range=(-1.0, 25.0))
+    (ax,) = fig.axes
+    assert len(ax.patches) == 50
+    heights = np.array([p.get_height() for p in ax.patches])
+    widths = np.array([p.get_width() for p in ax.patches])
+    assert np.sum(heights * widths) == pytest.approx(np.mean((y >= -1) & (y <= 25)), rel=1e-6)  # density of all y
+    for colour, mean in ((palette.ESTIMATE, 5.0), (palette.MEASUREMENT, 4.0)):
+        curve, mean_line = lines_of(ax, colour)
+        grid, dens = curve.get_data()
+        assert grid[np.argmax(dens)] == pytest.approx(mean, abs=0.05)
+        mass = 0.5 * (math.erf((25 - mean) / (4 * math.sqrt(2))) - math.erf((-1 - mean) / (4 * math.sqrt(2))))
+        assert np.trapezoid(dens, grid) == pytest.approx(mass, abs=1e-3)  # N(mean, 16) over (-1, 25)
+        assert np.allclose(mean_line.get_xdata(), mean)
+    assert "UKF N(5, 16)" in [t.get_text() for t in ax.get_legend().get_texts()]
+    png = fig._repr_png_()
+    assert png[:4] == b"\x89PNG" and len(png) > 5_000
+
+
+def test_moments_chart_refuses_bad_input():
+    y = np.arange(10.0)
+    with pytest.raises(ValueError, match="ukf"):
+        kf.plots.transform_moments_chart(y, (5.0, -1.0), (4.0, 16.0))
+    with pytest.raises(ValueError, match="bins"):
+        kf.plots.transform_moments_chart(y, (5.0, 1.0), (4.0, 16.0), bins=1)
+    with pytest.raises(ValueError, match="y_range"):
+        kf.plots.transform_moments_chart(y, (5.0, 1.0), (4.0, 16.0), y_range=(3.0, 3.0))
+
+
+def test_comparison_chart_draws_both_estimates_and_errors(runs):
+    ekf, ukf = runs
+    fig = kf.plots.filter_comparison_chart(ekf, ukf)
+    ax_map, ax_e = fig.axes
+    (e_path,), (u_path,) = lines_of(ax_map, palette.MEASUREMENT), lines_of(ax_map, palette.ESTIMATE)
+    assert np.allclose(e_path.get_xydata(), ekf.mu[:, :2]) and np.allclose(u_path.get_xydata(), ukf.mu[:, :2])
+    (e_err,), (u_err,) = lines_of(ax_e, palette.MEASUREMENT), lines_of(ax_e, palette.ESTIMATE)
+    assert np.allclose(e_err.get_ydata(), ekf.error) and np.allclose(u_err.get_ydata(), ukf.error)
+    labels = [t.get_text() for t in ax_e.get_legend().get_texts()]
+    assert labels[0] == f"EKF, RMS {np.sqrt(np.mean(ekf.error**2)):.3f} m"
+    assert labels[1] == f"UKF, RMS {np.sqrt(np.mean(ukf.error**2)):.3f} m"
+    png = fig._repr_png_()
+    assert png[:4] == b"\x89PNG" and len(png) > 10_000
+
+
+def test_comparison_chart_refuses_two_different_drives(runs):
+    other = kf.sim.landmark_loop(0, filter="ukf", laps=2)
+    with pytest.raises(ValueError, match="same drive"):
+        kf.plots.filter_comparison_chart(runs[0], other)
