@@ -41,6 +41,7 @@ from .style import new_figure, nice_limit
 
 MAP_MARGIN = 1.5  # m of room around the landmarks and the true path
 ROBOT_SIZE = 0.45  # m from the robot's centre to its nose
+TRUTH_SIZE = 0.65  # m: the true robot is drawn larger, so it shows round an estimate on top of it
 NSIG = 2.0  # the map's ellipses and the strips' bands are 2-sigma
 AXES = ("x", "y")
 
@@ -163,7 +164,7 @@ def loop_map(ax, run, k: int | None = None, legend: bool = True) -> LoopMap:
     (truth_after,) = ax.plot([], [], **path)
     (trail,) = ax.plot([], [], color=palette.ESTIMATE, lw=1.6, alpha=0.9, label="estimate so far")
     start = np.asarray(run.start, float)
-    truth_robot = robot(ax, start, color=palette.TRUTH, size=ROBOT_SIZE, alpha=0.8, zorder=3, label="true robot")
+    truth_robot = robot(ax, start, color=palette.TRUTH, size=TRUTH_SIZE, alpha=0.8, zorder=3, label="true robot")
     est_robot = robot(ax, start, color=palette.ESTIMATE, size=ROBOT_SIZE, zorder=5, label="estimated robot")
     eye = np.eye(2)
     prior_ring = covariance_ellipse(
