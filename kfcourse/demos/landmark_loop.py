@@ -15,6 +15,7 @@ DROPOUT = (40, 70)  # steps k with t0 <= k < t1 without readings when dropout is
 FIRST_FRAME = 60  # the step shown first: on the top straight, two landmarks in view
 NOISE_RANGE = (-1.0, 1.0)  # log10 of the noise scales the sliders reach: 0.1x to 10x
 FILTERS = (("EKF", "ekf"), ("UKF", "ukf"))
+GATE = 3.0  # the filter rejects a reading more than 3 standard deviations from its prediction (chapter 8)
 
 
 class LoopModel:
@@ -54,6 +55,7 @@ class LoopModel:
             motion_noise=self.motion_noise,
             sensor_noise=self.sensor_noise,
             kidnap=self.kidnap,
+            gate=GATE,
         )
 
     def set_filter(self, name: str) -> None:
@@ -93,11 +95,13 @@ class LoopModel:
 
 def _readout(model: LoopModel) -> str:
     run, k = model.run, model.frame
-    seen = int(np.count_nonzero(run.used[k]))
+    used, rejected = int(np.count_nonzero(run.used[k])), int(np.count_nonzero(run.rejected[k]))
     if model.blind():
         sight = "<b>sensor blind</b>"
     else:
-        sight = f"uses {seen} landmark{'s' if seen != 1 else ''}"
+        sight = f"uses {used} reading{'s' if used != 1 else ''}"
+        if rejected:
+            sight += f", <span style='color:{palette.MEASUREMENT}'><b>rejects {rejected}</b></span> (outside the gate)"
     before, after = model.areas()
     shrink = f" (×{after / before:.2f})" if before > 0 else ""
     inside = "inside" if run.inside[k] else "<b>outside</b>"
@@ -142,7 +146,8 @@ def landmark_loop(seed: int = 0) -> Demo:
 
     caption = (
         "<b>Landmark loop.</b> Purple squares: the map's landmarks. Grey: the true path and robot. "
-        "Teal: the filter's estimate, its trail, its 2σ ellipse, and beams to the landmarks it uses at this step; "
+        "Teal: the filter's estimate, its trail, its 2σ ellipse, and beams to the landmarks whose readings it uses "
+        "at this step; dashed orange: readings it rejects, more than 3σ from what it expects; "
         "dashed purple: the 2σ ellipse of the prediction, before this step's readings. "
         "Under the map: the x and y error (truth − estimate) with the ±2σ band of the filter's own variance. "
         "<i>Run</i> plays the lap, <i>step</i> scrubs it; <i>process noise</i> scales the odometry noise and R "

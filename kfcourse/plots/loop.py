@@ -2,8 +2,9 @@ r"""The landmark localization loop (chapter 10): the map and the error strips.
 
 The map shows the landmarks (purple squares), the true path and robot (faint
 grey), the filter's trail and robot (teal), its 2-sigma position ellipse after
-the step's readings (teal) and before them (dashed purple, the prediction), and
-teal beams from the estimate to the landmarks the filter used at that step.
+the step's readings (teal) and before them (dashed purple, the prediction),
+teal beams from the estimate to the landmarks the filter used at that step, and
+dashed orange beams to those whose readings it rejected (outside its gate).
 
 Under the map, two strips show the position error along x and along y over the
 whole run, each with the band of plus or minus two standard deviations of that
@@ -12,8 +13,8 @@ error inside the band about 95 % of the time: the x error is Gaussian with
 variance :math:`\Sigma_{xx}` if the filter is right about itself.
 
 Every function takes a run record with the fields of
-:class:`kfcourse.sim.LoopRun` (``t, truth, landmarks, used, mu_bar, Sig_bar,
-mu, Sig, dropout, kidnap``); the ``update_*`` functions move what was drawn to
+:class:`kfcourse.sim.LoopRun` (``t, dt, start, truth, landmarks, used,
+rejected, mu_bar, Sig_bar, mu, Sig, dropout, kidnap``); the ``update_*`` functions move what was drawn to
 another step (or another run) in place.
 """
 
@@ -111,7 +112,8 @@ class LoopMap:
     robot: Polygon
     prior_ring: Ellipse  #: 2-sigma, before the step's readings
     ring: Ellipse  #: 2-sigma, after them
-    beams: LineCollection
+    beams: LineCollection  #: teal, to the landmarks whose readings were used
+    rejected: LineCollection  #: dashed orange, to those whose readings were rejected
     note: Text  #: "sensor blind", "kidnapped", or nothing
 
     @property
@@ -121,6 +123,7 @@ class LoopMap:
             self.truth_before,
             self.truth_after,
             self.beams,
+            self.rejected,
             self.trail,
             self.truth_robot,
             self.prior_ring,
@@ -171,11 +174,12 @@ def loop_map(ax, run, k: int | None = None, legend: bool = True) -> LoopMap:
         ax, start, eye, nsig=NSIG, color=palette.PREDICTION, lw=1.3, ls="--", zorder=4, label="2σ before readings"
     )
     ring = covariance_ellipse(ax, start, eye, nsig=NSIG, lw=2.0, zorder=4, label="2σ after readings")
-    lines = beams(ax, label="beams: landmarks in use")
+    lines = beams(ax)
+    refused = beams(ax, color=palette.MEASUREMENT, linestyles="--", lw=1.4)
     note = ax.text(
         0.5, 0.97, "", transform=ax.transAxes, ha="center", va="top", fontsize=11, weight="bold", color=palette.INK
     )
-    view = LoopMap(truth_before, truth_after, trail, truth_robot, est_robot, prior_ring, ring, lines, note)
+    view = LoopMap(truth_before, truth_after, trail, truth_robot, est_robot, prior_ring, ring, lines, refused, note)
     if legend:
         handles = [
             ax.scatter([], [], marker="s", color=palette.LANDMARK, s=40),
@@ -184,9 +188,12 @@ def loop_map(ax, run, k: int | None = None, legend: bool = True) -> LoopMap:
             Ellipse((0, 0), 1, 1, fill=False, edgecolor=palette.ESTIMATE, lw=2),
             Ellipse((0, 0), 1, 1, fill=False, edgecolor=palette.PREDICTION, lw=1.3, ls="--"),
             Line2D([], [], color=palette.ESTIMATE, lw=1.2),
+            Line2D([], [], color=palette.MEASUREMENT, lw=1.4, ls="--"),
         ]
-        labels = ["landmarks", "truth", "estimate", "2σ after readings", "2σ before (prediction)", "beams in use"]
-        ax.legend(handles, labels, loc="lower left", bbox_to_anchor=(0.0, 1.0), ncols=3, fontsize=9)
+        labels = ["landmark", "truth", "estimate", "2σ estimate", "2σ prediction", "reading used", "reading rejected"]
+        ax.legend(
+            handles, labels, loc="lower left", bbox_to_anchor=(0.0, 1.0), ncols=4, fontsize=8.5, columnspacing=1.2
+        )
     update_loop_map(view, run, k)
     return view
 
@@ -203,8 +210,9 @@ def update_loop_map(view: LoopMap, run, k: int) -> None:
     update_robot(view.robot, mu[k])
     update_covariance_ellipse(view.prior_ring, run.mu_bar[k], np.asarray(run.Sig_bar[k])[:2, :2])
     update_covariance_ellipse(view.ring, mu[k], np.asarray(run.Sig[k])[:2, :2])
-    used = np.asarray(run.used[k], bool)
-    update_beams(view.beams, mu[k], np.asarray(run.landmarks)[used])
+    marks = np.asarray(run.landmarks)
+    update_beams(view.beams, mu[k], marks[np.asarray(run.used[k], bool)])
+    update_beams(view.rejected, mu[k], marks[np.asarray(run.rejected[k], bool)])
     k0 = _kidnap_step(run)
     if _blind(run, k):
         view.note.set_text("sensor blind")
