@@ -3,6 +3,7 @@ ipywidgets widget: ``kf.demos.hallway(seed=0)``."""
 
 from .covariance import covariance_ellipse
 from .hallway import hallway
+from .landmark_loop import landmark_loop
 from .linearization import linearization
 from .nees import nees_panel
 from .raw_vs_filtered import raw_vs_filtered
@@ -13,6 +14,7 @@ from .trust import trust_slider
 __all__ = [
     "covariance_ellipse",
     "hallway",
+    "landmark_loop",
     "linearization",
     "nees_panel",
     "raw_vs_filtered",

@@ -15,7 +15,7 @@ DROPOUT = (40, 70)  # steps k with t0 <= k < t1 without readings when dropout is
 FIRST_FRAME = 60  # the step shown first: on the top straight, two landmarks in view
 NOISE_RANGE = (-1.0, 1.0)  # log10 of the noise scales the sliders reach: 0.1x to 10x
 FILTERS = (("EKF", "ekf"), ("UKF", "ukf"))
-GATE = 3.0  # the filter rejects a reading more than 3 standard deviations from its prediction (chapter 8)
+GATE = 4.0  # the filter rejects a reading more than 4 standard deviations from its prediction (chapter 8)
 
 
 class LoopModel:
@@ -147,7 +147,7 @@ def landmark_loop(seed: int = 0) -> Demo:
     caption = (
         "<b>Landmark loop.</b> Purple squares: the map's landmarks. Grey: the true path and robot. "
         "Teal: the filter's estimate, its trail, its 2σ ellipse, and beams to the landmarks whose readings it uses "
-        "at this step; dashed orange: readings it rejects, more than 3σ from what it expects; "
+        "at this step; dashed orange: readings it rejects, more than 4σ from what it expects; "
         "dashed purple: the 2σ ellipse of the prediction, before this step's readings. "
         "Under the map: the x and y error (truth − estimate) with the ±2σ band of the filter's own variance. "
         "<i>Run</i> plays the lap, <i>step</i> scrubs it; <i>process noise</i> scales the odometry noise and R "
