@@ -49,7 +49,8 @@ def expected_run(model):
 def test_first_frame_is_a_normal_lap_mid_way():
     demo = make()
     m = demo.model
-    assert m.frame == FIRST_FRAME == demo.controls["frame"].value
+    assert m.frame == FIRST_FRAME == demo.controls["frame"].value == 60  # chapter 10: "opens at step 60"
+    assert DROPOUT == (40, 70) and GATE == 4.0  # the window and the gate the chapter's prose and cells use
     assert demo.controls["frame"].max == m.run.t.size - 1
     assert (m.filter, m.motion_noise, m.sensor_noise, m.dropout, m.kidnap) == ("ekf", 1.0, 1.0, False, None)
     assert m.run.gate == GATE and m.run.dropout is None
