@@ -1,8 +1,9 @@
 """Make the animated picture of chapter 10's landmark loop for the README.
 
-One lap with the sensor blind for a stretch (the demo's dropout window): the
-ellipse balloons while the robot drives on odometry alone and collapses at the
-first reading back.  Drawn with the same map and strips as the demo, written as
+One lap with the sensor blind for a stretch (the demo's dropout window) and
+junk odometry (process noise at the demo's maximum, chapter 10's third prompt):
+the ellipse balloons while the robot drives on odometry alone and collapses at
+the first reading back.  Drawn with the same map and strips as the demo, written as
 an animated GIF with Pillow.
 
     python tools/loop_animation.py [docs/screenshots/10_capstone.gif]
@@ -17,7 +18,7 @@ from pathlib import Path
 from PIL import Image
 
 import kfcourse as kf
-from kfcourse.demos.landmark_loop import DROPOUT
+from kfcourse.demos.landmark_loop import DROPOUT, GATE
 from kfcourse.plots.loop import error_strips, loop_figure, loop_map, update_error_strips, update_loop_map
 from kfcourse.plots.style import FigureRenderer
 
@@ -27,6 +28,7 @@ FRAME_MS = 80  # ms per picture: one step of 0.2 s, 2.5 times faster than real t
 HOLD_MS = 1500  # ms the last picture stays before the loop starts again
 DPI = 80
 MAX_BYTES = 2_000_000
+MOTION_NOISE = 10.0  # the process-noise slider at its maximum
 
 
 def frames(run) -> list[Image.Image]:
@@ -48,9 +50,12 @@ def frames(run) -> list[Image.Image]:
 
 
 def main(out: Path = OUT) -> None:
-    run = kf.sim.landmark_loop(seed=0, dropout=DROPOUT)
+    run = kf.sim.landmark_loop(seed=0, dropout=DROPOUT, motion_noise=MOTION_NOISE, gate=GATE)
     pictures = frames(run)
-    palette_image = pictures[len(pictures) // 2].quantize(colors=64, method=Image.Quantize.MEDIANCUT)
+    montage = Image.new("RGB", (pictures[0].width, pictures[0].height * 8))  # one palette from across the lap
+    for i, k in enumerate(range(0, len(pictures), -(-len(pictures) // 8))):
+        montage.paste(pictures[k], (0, i * pictures[0].height))
+    palette_image = montage.quantize(colors=255, method=Image.Quantize.MAXCOVERAGE)
     quantized = [p.quantize(palette=palette_image, dither=Image.Dither.NONE) for p in pictures]
     durations = [FRAME_MS] * (len(quantized) - 1) + [HOLD_MS]
     out.parent.mkdir(parents=True, exist_ok=True)
