@@ -15,6 +15,7 @@ DROPOUT = (40, 70)  # steps k with t0 <= k < t1 without readings when dropout is
 FIRST_FRAME = 60  # the step shown first: on the top straight, two landmarks in view
 NOISE_RANGE = (-1.0, 1.0)  # log10 of the noise scales the sliders reach: 0.1x to 10x
 FILTERS = (("EKF", "ekf"), ("UKF", "ukf"))
+IMAGE_WIDTH = "680px"  # the picture's largest width on the page
 GATE = 4.0  # the filter rejects a reading more than 4 standard deviations from its prediction (chapter 8)
 
 
@@ -145,18 +146,16 @@ def landmark_loop(seed: int = 0) -> Demo:
         kidnap.description = "Undo kidnap" if model.kidnap is not None else "Kidnap"
 
     caption = (
-        "<b>Landmark loop.</b> Purple squares: the map's landmarks. Grey: the true path and robot. "
-        "Teal: the filter's estimate, its trail, its 2σ ellipse, and beams to the landmarks whose readings it uses "
-        "at this step; dashed orange: readings it rejects, more than 4σ from what it expects; "
-        "dashed purple: the 2σ ellipse of the prediction, before this step's readings. "
-        "Under the map: the x and y error (truth − estimate) with the ±2σ band of the filter's own variance. "
-        "<i>Run</i> plays the lap, <i>step</i> scrubs it; <i>process noise</i> scales the odometry noise and R "
-        "(trust in odometry), <i>measurement noise</i> the reading noise and Q (trust in the sensor); "
-        f"<i>dropout</i> blinds the sensor for steps {DROPOUT[0]}–{DROPOUT[1] - 1}; <i>filter</i> picks EKF or UKF "
-        "on the same noise; <i>Kidnap</i> carries the true robot half a lap on at the step shown."
+        "<b>Landmark loop.</b> Purple squares: landmarks. Grey: true path and robot. Teal: the filter's estimate, "
+        "trail, 2σ ellipse and beams to the readings it uses; dashed orange: readings it rejects (over 4σ off); "
+        "dashed purple: the 2σ ellipse before this step's readings. Strips: x and y error (truth − estimate) in the "
+        "filter's own ±2σ band. <i>process noise</i> / <i>measurement noise</i> scale the odometry noise and R "
+        "(trust in odometry) / the reading noise and Q (trust in the sensor); <i>sensor dropout</i> blinds steps "
+        f"{DROPOUT[0]}–{DROPOUT[1] - 1}; <i>filter</i>: EKF or UKF on the same noise; <i>Kidnap</i> moves the true "
+        "robot half a lap on at this step."
     )
     lo, hi = NOISE_RANGE
-    return Demo(
+    demo = Demo(
         name="landmark-loop",
         caption=caption,
         model=model,
@@ -193,5 +192,10 @@ def landmark_loop(seed: int = 0) -> Demo:
             ),
             "kidnap": (kidnap, model.toggle_kidnap),
         },
-        layout=[readout, ["play", "frame"], ["motion", "sensor"], ["dropout", "filter", "kidnap"]],
+        layout=[readout, ["play", "frame"], ["motion", "sensor"], ["dropout", "kidnap"], "filter"],
     )
+    # The map with its strips is taller than wide: at the notebook's full width the controls would
+    # fall below the screen, so the picture stops growing at IMAGE_WIDTH.
+    demo.image.layout.width = "100%"
+    demo.image.layout.max_width = IMAGE_WIDTH
+    return demo
