@@ -213,7 +213,9 @@ def try_3_push_the_process_noise_until_it_breaks(demo):
     demo.controls["frame"].value = DROPOUT[1] - 1
     assert round(run.area[DROPOUT[1] - 1], 1) == 5.4 and round(run.area[DROPOUT[0] - 1], 3) == 0.017
     assert round(run.error[DROPOUT[1] - 1], 1) == 1.7  # "1.7 m off"
-    assert run.inside[DROPOUT[0] : DROPOUT[1]].all()  # "but the grey robot stays inside the ellipse"
+    e = run.truth[:, :2] - run.mu[:, :2]
+    d2 = np.einsum("ti,tij,tj->t", e, np.linalg.inv(run.Sig[:, :2, :2]), e)
+    assert (d2[DROPOUT[0] : DROPOUT[1]] <= 4.0).all()  # "the grey robot stays inside the teal (2-sigma) ellipse"
     demo.controls["frame"].value = DROPOUT[1]
     before, after = m.areas()
     assert round(before, 1) == 5.8 and round(after, 3) == 0.013 and after / before < 0.005
@@ -252,7 +254,8 @@ def try_5_kidnap_the_filter_stays_confidently_wrong(demo):
     after = slice(60, None)
     assert run.rejected[after].sum() > 2 * run.used[after].sum()  # "most beams turn orange"
     assert (round(run.error[after].min()), round(run.error[after].max())) == (5, 9)  # "5 to 9 m off"
-    assert np.sqrt(run.area[after] / np.pi).max() < 0.2  # "its ellipse never wider than about 20 cm"
+    longest = 2 * 2 * np.sqrt(np.linalg.eigvalsh(run.Sig[after, :2, :2]).max())  # the 2-sigma ellipse's long axis
+    assert longest < 1.0  # "its 2-sigma ellipse stays under a metre across"
     assert not run.inside[after].any()
     demo.controls["frame"].value = demo.controls["frame"].max
     assert "so far at 48% of the steps" in readout(demo)
