@@ -14,7 +14,7 @@ from ._base import Demo, button, slider
 DROPOUT = (40, 70)  # steps k with t0 <= k < t1 without readings when dropout is on (6 s of a 24 s lap)
 FIRST_FRAME = 60  # the step shown first: on the top straight, two landmarks in view
 NOISE_RANGE = (-1.0, 1.0)  # log10 of the noise scales the sliders reach: 0.1x to 10x
-FILTERS = (("EKF", "ekf"), ("UKF", "ukf"))
+FILTERS = ("EKF", "UKF")  # the choices shown; the run takes them in lower case
 IMAGE_WIDTH = "680px"  # the picture's largest width on the page
 GATE = 4.0  # the filter rejects a reading more than 4 standard deviations from its prediction (chapter 8)
 
@@ -60,7 +60,7 @@ class LoopModel:
         )
 
     def set_filter(self, name: str) -> None:
-        self.filter = name
+        self.filter = name.lower()
         self._rerun()
 
     def set_motion_noise(self, scale: float) -> None:
@@ -184,7 +184,8 @@ def landmark_loop(seed: int = 0) -> Demo:
             "filter": (
                 widgets.ToggleButtons(
                     options=list(FILTERS),
-                    value=model.filter,
+                    tooltips=["extended Kalman filter: Jacobians", "unscented Kalman filter: sigma points"],
+                    value=model.filter.upper(),
                     description="filter",
                     style={"button_width": "60px", "description_width": "40px"},
                 ),
