@@ -4,6 +4,7 @@ ipywidgets widget: ``kf.demos.hallway(seed=0)``."""
 from .association import data_association
 from .covariance import covariance_ellipse
 from .hallway import hallway
+from .landmark_loop import landmark_loop
 from .linearization import linearization
 from .nees import nees_panel
 from .raw_vs_filtered import raw_vs_filtered
@@ -16,6 +17,7 @@ __all__ = [
     "covariance_ellipse",
     "data_association",
     "hallway",
+    "landmark_loop",
     "linearization",
     "nees_panel",
     "raw_vs_filtered",

@@ -25,6 +25,7 @@ from .bayes import bayes_cycle_chart
 from .charts import blend_variance_chart, convergence_chart, drift_chart, ellipse_shadow_chart, samples_chart
 from .ekf import jacobian_runs_chart, nonlinear_samples_chart
 from .localization import gate_outline, reading_points, update_ellipse_chart, wrap_runs_chart
+from .loop import loop_chart, position_errors
 from .matrix import predict_update_chart
 from .runs import kf_run_chart
 from .style import FigureRenderer, new_figure
@@ -47,9 +48,11 @@ __all__ = [
     "jacobian_runs_chart",
     "kf_run_chart",
     "landmarks",
+    "loop_chart",
     "new_figure",
     "nonlinear_samples_chart",
     "palette",
+    "position_errors",
     "predict_update_chart",
     "reading_points",
     "robot",

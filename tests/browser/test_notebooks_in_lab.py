@@ -332,6 +332,7 @@ class DemoDriver:
         self.page.wait_for_timeout(PLAY_MS)
         v1 = frame.evaluate(JS_SLIDER_STATE)["value"] if frame is not None else None
         n1 = self.changes()
+        shown = self.img.evaluate("(i, n) => i.__kf.changes.slice(n).map(c => c.t)", n0)
         play.click()  # the same button now reads Pause
         t_pause = self.page.evaluate("() => window.__kfClickT")
         t0 = time.monotonic()
@@ -353,6 +354,9 @@ class DemoDriver:
         if n1 <= n0:
             self.problem(f"Run: the picture did not change in {PLAY_MS} ms")
         frames = f", {v1 - v0:.0f} frames" if frame is not None else ""
+        gaps = sorted(b - a for a, b in itertools.pairwise(shown))
+        if gaps:
+            frames += f", median {gaps[len(gaps) // 2]:.0f} ms between pictures"
         self.report.summary.append(
             f"play {self.label}: {n1 - n0} pictures in {PLAY_MS} ms{frames}; "
             f"after Pause {len(late)} more picture(s), the last {max(late, default=0):.0f} ms after the click; "

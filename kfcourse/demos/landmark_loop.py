@@ -1,0 +1,202 @@
+"""Chapter 10: a robot localizing itself round a loop of landmarks, and how to break it."""
+
+from __future__ import annotations
+
+import ipywidgets as widgets
+import numpy as np
+
+from ..plots import palette
+from ..plots.loop import error_strips, loop_figure, loop_map, update_error_strips, update_loop_map
+from ..plots.style import FigureRenderer
+from ..sim.localization import landmark_loop as run_loop
+from ._base import Demo, button, slider
+
+DROPOUT = (40, 70)  # steps k with t0 <= k < t1 without readings when dropout is on (6 s of a 24 s lap)
+FIRST_FRAME = 60  # the step shown first: on the top straight, two landmarks in view
+NOISE_RANGE = (-1.0, 1.0)  # log10 of the noise scales the sliders reach: 0.1x to 10x
+FILTERS = ("EKF", "UKF")  # the choices shown; the run takes them in lower case
+IMAGE_WIDTH = "680px"  # the picture's largest width on the page
+GATE = 4.0  # the filter rejects a reading more than 4 standard deviations from its prediction (chapter 8)
+
+
+class LoopModel:
+    """Model: the settings of one landmark-loop run, the run, and the step shown.
+
+    Attributes
+    ----------
+    seed : int
+    filter : {"ekf", "ukf"}
+    motion_noise, sensor_noise : float
+        Scales of the odometry noise and its R, and of the reading noise and its Q.
+    dropout : bool
+        Blind the sensor for the steps ``DROPOUT``.
+    kidnap : int or None
+        The step at which the true robot is carried off, or None.
+    run : LoopRun
+        ``kf.sim.landmark_loop`` with these settings; recomputed once per change.
+    frame : int
+        The step shown.
+    """
+
+    def __init__(self, seed: int = 0):
+        self.seed = seed
+        self.filter = "ekf"
+        self.motion_noise = 1.0
+        self.sensor_noise = 1.0
+        self.dropout = False
+        self.kidnap = None
+        self.frame = FIRST_FRAME
+        self._rerun()
+
+    def _rerun(self) -> None:
+        self.run = run_loop(
+            self.seed,
+            filter=self.filter,
+            dropout=DROPOUT if self.dropout else None,
+            motion_noise=self.motion_noise,
+            sensor_noise=self.sensor_noise,
+            kidnap=self.kidnap,
+            gate=GATE,
+        )
+
+    def set_filter(self, name: str) -> None:
+        self.filter = name.lower()
+        self._rerun()
+
+    def set_motion_noise(self, scale: float) -> None:
+        self.motion_noise = float(scale)
+        self._rerun()
+
+    def set_sensor_noise(self, scale: float) -> None:
+        self.sensor_noise = float(scale)
+        self._rerun()
+
+    def set_dropout(self, on: bool) -> None:
+        self.dropout = bool(on)
+        self._rerun()
+
+    def toggle_kidnap(self) -> None:
+        """Carry the true robot off at the step shown, or undo a kidnap."""
+        self.kidnap = self.frame if self.kidnap is None else None
+        self._rerun()
+
+    def blind(self) -> bool:
+        """True if the sensor is blinded at the step shown."""
+        return self.dropout and DROPOUT[0] <= self.frame < DROPOUT[1]
+
+    def areas(self) -> tuple[float, float]:
+        """Area of the 1-sigma position ellipse before and after the readings of the step shown (m²)."""
+        before = np.pi * np.sqrt(max(np.linalg.det(self.run.Sig_bar[self.frame, :2, :2]), 0.0))  # pi sqrt(det)
+        return float(before), float(self.run.area[self.frame])
+
+    def share_inside(self) -> float:
+        """Share of the steps so far with the true position inside the 3-sigma ellipse (0 to 1)."""
+        return float(np.mean(self.run.inside[: self.frame + 1]))
+
+
+def _readout(model: LoopModel) -> str:
+    run, k = model.run, model.frame
+    used, rejected = int(np.count_nonzero(run.used[k])), int(np.count_nonzero(run.rejected[k]))
+    if model.blind():
+        sight = "<b>sensor blind</b>"
+    else:
+        sight = f"uses {used} reading{'s' if used != 1 else ''}"
+        if rejected:
+            sight += f", <span style='color:{palette.MEASUREMENT}'><b>rejects {rejected}</b></span> (outside the gate)"
+    before, after = model.areas()
+    shrink = f" (×{after / before:.2f})" if before > 0 else ""
+    inside = "inside" if run.inside[k] else "<b>outside</b>"
+    kidnapped = " &nbsp; <b>kidnapped</b> at step " + str(model.kidnap) if model.kidnap is not None else ""
+    return (
+        f"<div style='font-size:13px;line-height:1.5'>step {k}, t = {run.t[k]:.1f} s: {sight}{kidnapped}<br>"
+        f"<span style='color:{palette.ESTIMATE}'>position error {run.error[k]:.2f} m</span>; "
+        f"1σ ellipse area <span style='color:{palette.PREDICTION}'>{before:.3g} m² before</span> → "
+        f"<span style='color:{palette.ESTIMATE}'>{after:.3g} m² after</span> the readings{shrink}; "
+        f"truth {inside} the 3σ ellipse (so far at {model.share_inside():.0%} of the steps)</div>"
+    )
+
+
+def landmark_loop(seed: int = 0) -> Demo:
+    """Demo "landmark loop" (chapter 10): EKF (or UKF) localization round a map of landmarks.
+
+    Run animates the lap, the step slider scrubs it; two log sliders scale the
+    odometry noise (and the filter's R) and the reading noise (and its Q); a
+    toggle blinds the sensor for a fixed stretch of steps; another picks the
+    filter; *Kidnap* carries the true robot half a lap on at the step shown.
+    Every change reruns the whole lap once; moving in time only redraws.
+
+    Returns
+    -------
+    Demo (an ipywidgets.VBox)
+    """
+    model = LoopModel(seed)
+    fig, ax_map, strip_axes = loop_figure(model.run)
+    view = loop_map(ax_map, model.run, model.frame)
+    strips = error_strips(strip_axes, model.run, model.frame)
+    renderer = FigureRenderer(fig, [*view.moving, *strips.moving])
+    readout = widgets.HTML()
+    readout.add_class("kf-readout")
+    kidnap = button("Kidnap", icon="random", tooltip="Carry the true robot half a lap on at this step")
+
+    def draw() -> None:
+        update_loop_map(view, model.run, model.frame)
+        if update_error_strips(strips, model.run, model.frame):
+            renderer.invalidate()  # new y limits: the ticks in the background change
+        readout.value = _readout(model)
+        kidnap.description = "Undo kidnap" if model.kidnap is not None else "Kidnap"
+
+    caption = (
+        "<b>Landmark loop.</b> Purple squares: landmarks. Grey: true path and robot. Teal: the filter's estimate, "
+        "trail, 2σ ellipse and beams to the readings it uses; dashed orange: readings it rejects (over 4σ off); "
+        "dashed purple: the 2σ ellipse before this step's readings. Strips: x and y error (truth − estimate) in the "
+        "filter's own ±2σ band. <i>process noise</i> / <i>measurement noise</i> scale the odometry noise and R "
+        "(trust in odometry) / the reading noise and Q (trust in the sensor); <i>sensor dropout</i> blinds steps "
+        f"{DROPOUT[0]}–{DROPOUT[1] - 1}; <i>filter</i>: EKF or UKF on the same noise; <i>Kidnap</i> moves the true "
+        "robot half a lap on at this step."
+    )
+    lo, hi = NOISE_RANGE
+    demo = Demo(
+        name="landmark-loop",
+        caption=caption,
+        model=model,
+        renderer=renderer,
+        draw=draw,
+        frames=model.run.t.size,
+        controls={
+            "motion": (
+                slider(widgets.FloatLogSlider, "process noise ×", 1.0, lo, hi, 0.05, ".2g", base=10),
+                model.set_motion_noise,
+            ),
+            "sensor": (
+                slider(widgets.FloatLogSlider, "measurement noise ×", 1.0, lo, hi, 0.05, ".2g", base=10),
+                model.set_sensor_noise,
+            ),
+            "dropout": (
+                widgets.ToggleButton(
+                    value=False,
+                    description="sensor dropout",
+                    icon="eye-slash",
+                    tooltip=f"Blind the sensor for steps {DROPOUT[0]} to {DROPOUT[1] - 1}",
+                    layout=widgets.Layout(width="150px"),
+                ),
+                model.set_dropout,
+            ),
+            "filter": (
+                widgets.ToggleButtons(
+                    options=list(FILTERS),
+                    tooltips=["extended Kalman filter: Jacobians", "unscented Kalman filter: sigma points"],
+                    value=model.filter.upper(),
+                    description="filter",
+                    style={"button_width": "60px", "description_width": "40px"},
+                ),
+                model.set_filter,
+            ),
+            "kidnap": (kidnap, model.toggle_kidnap),
+        },
+        layout=[readout, ["play", "frame"], ["motion", "sensor"], ["dropout", "kidnap"], "filter"],
+    )
+    # The map with its strips is taller than wide: at the notebook's full width the controls would
+    # fall below the screen, so the picture stops growing at IMAGE_WIDTH.
+    demo.image.layout.width = "100%"
+    demo.image.layout.max_width = IMAGE_WIDTH
+    return demo
