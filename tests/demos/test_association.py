@@ -9,7 +9,7 @@ from matplotlib.patches import Ellipse, Polygon
 from matplotlib.path import Path
 
 import kfcourse as kf
-from kfcourse.demos.association import LEG_OPTIONS
+from kfcourse.demos.association import LEG_OPTIONS, ROBOT_SIZE
 from kfcourse.plots import palette
 
 NO_LEG, LEG = LEG_OPTIONS
@@ -66,6 +66,9 @@ def test_prompt_2_a_wide_gate_lets_the_leg_in_and_the_estimate_slides_off():
     assert res.error == pytest.approx(0.29, abs=0.005)
     assert res.error > 4 * kf.sim.gated_update(demo.model.scan, 3.0).error
     assert estimate_drawn(demo) == pytest.approx(res.mu[:2])
+    truth_drawn = np.asarray(demo.renderer.dynamic[-2].get_xy(), float)[:3].mean(axis=0)  # the grey outline
+    assert truth_drawn == pytest.approx(demo.model.scan.truth[:2])
+    assert np.linalg.norm(estimate_drawn(demo) - truth_drawn) > ROBOT_SIZE  # the triangles no longer overlap much
 
 
 def test_prompt_3_a_tight_gate_throws_good_readings_away():
