@@ -16,7 +16,8 @@ from ._base import Demo, slider
 GATE = 3.0  # standard deviations: the default validation gate
 GATE_RANGE = (1.0, 6.0)
 LEG_OPTIONS = ("none", "a pedestrian's leg")
-X_LIM, Y_LIM = (-4.6, 4.6), (-4.2, 4.6)  # m
+X_LIM, Y_LIM = (-4.9, 5.6), (-4.6, 5.1)  # m: wide enough for every gate up to the slider's 6 sigma
+ROBOT_SIZE = 0.2  # m, centre to nose: small enough that the 2-sigma ellipse after the update shows
 
 
 class AssociationModel:
@@ -93,7 +94,7 @@ def data_association(seed: int = 0) -> Demo:
 
     # Static: the map, the truth, the predicted pose and its 2-sigma ellipse.
     landmarks(ax, scan.landmarks, labels=True, zorder=2)
-    robot(ax, scan.mu_bar, color=palette.PREDICTION, size=0.35, alpha=0.8, zorder=3)
+    robot(ax, scan.mu_bar, color=palette.PREDICTION, size=ROBOT_SIZE, alpha=0.8, zorder=3)
     covariance_ellipse(ax, scan.mu_bar, scan.Sig_bar[:2, :2], nsig=2.0, color=palette.PREDICTION, lw=1.5)
 
     # Dynamic: gates, links reading -> landmark, readings, the leg's label, the estimate, the readout.
@@ -106,13 +107,14 @@ def data_association(seed: int = 0) -> Demo:
     used = ax.scatter([], [], s=40, color=palette.MEASUREMENT, zorder=4)
     unused = ax.scatter([], [], s=60, facecolors="white", edgecolors=palette.MEASUREMENT, linewidths=2.0, zorder=4)
     leg_label = ax.text(0, 0, "leg", color=palette.MEASUREMENT, fontsize=9, ha="left", va="bottom", zorder=5)
-    estimate = robot(ax, scan.mu_bar, color=palette.ESTIMATE, size=0.35, zorder=5)
-    estimate_ellipse = covariance_ellipse(ax, scan.mu_bar, scan.Sig_bar[:2, :2], nsig=2.0, lw=2.0, zorder=5)
-    # The truth is drawn last (as a dynamic artist, though it never moves) so the estimate never hides it.
-    truth = robot(ax, scan.truth, color=palette.TRUTH, size=0.35, facecolor="none", lw=2.0, alpha=0.8, zorder=6)
+    estimate = robot(ax, scan.mu_bar, color=palette.ESTIMATE, size=ROBOT_SIZE, alpha=0.5, zorder=5)
+    # The truth is drawn over the estimate (as a dynamic artist, though it never moves) so the estimate never
+    # hides it, and the estimate's ellipse over both, so it shows even when it is smaller than the triangle.
+    truth = robot(ax, scan.truth, color=palette.TRUTH, size=ROBOT_SIZE, facecolor="none", lw=2.0, zorder=6)
+    estimate_ellipse = covariance_ellipse(ax, scan.mu_bar, scan.Sig_bar[:2, :2], nsig=2.0, lw=2.0, zorder=7)
     readout = widgets.HTML()  # text under the picture: no glyphs to render into the PNG
     readout.add_class("kf-readout")
-    renderer = FigureRenderer(fig, [gates, beams, links, used, unused, leg_label, estimate, estimate_ellipse, truth])
+    renderer = FigureRenderer(fig, [gates, beams, links, used, unused, leg_label, estimate, truth, estimate_ellipse])
 
     def draw() -> None:
         scan, res = model.scan, model.result
@@ -137,24 +139,23 @@ def data_association(seed: int = 0) -> Demo:
         "purple dashed: each landmark's gate, the readings within γ standard deviations (Mahalanobis) of its "
         "predicted reading, drawn like the readings. Orange: this scan's readings, each drawn where it points from "
         "the predicted pose; filled and joined to a landmark if accepted, hollow if rejected. Teal: the EKF estimate "
-        "after the accepted readings, with its 2σ ellipse. Grey outline: the true pose. Slider: the gate γ; "
-        "toggle: add a pedestrian's leg to the scan."
+        "after the accepted readings, with its 2σ ellipse (drawn on top). Grey outline: the true pose. "
+        "Slider: the gate γ; toggle: add a pedestrian's leg to the scan."
     )
+    gate_slider = slider(widgets.FloatSlider, "gate γ (σ)", model.gate, *GATE_RANGE, 0.1, readout_format=".1f")
+    leg_toggle = widgets.ToggleButtons(
+        options=list(LEG_OPTIONS),
+        value=LEG_OPTIONS[0],
+        description="extra reading",
+        style={"description_width": "initial", "button_width": "auto"},
+    )
+    controls_row = widgets.HBox([gate_slider, leg_toggle], layout=widgets.Layout(flex_flow="row wrap"))  # wraps
     return Demo(
         name="data-association",
         caption=caption,
         model=model,
         renderer=renderer,
         draw=draw,
-        controls={
-            "gate": (
-                slider(widgets.FloatSlider, "gate γ (σ)", model.gate, *GATE_RANGE, 0.1, readout_format=".1f"),
-                model.set_gate,
-            ),
-            "leg": (
-                widgets.ToggleButtons(options=list(LEG_OPTIONS), value=LEG_OPTIONS[0], description="extra reading"),
-                model.set_leg,
-            ),
-        },
-        layout=[readout, ["gate", "leg"]],
+        controls={"gate": (gate_slider, model.set_gate), "leg": (leg_toggle, model.set_leg)},
+        layout=[readout, controls_row],
     )

@@ -120,43 +120,51 @@ def update_ellipse_chart(mu_bar, Sig_bar, mu, Sig, landmark, nsig: float = 2.0):
     return fig
 
 
-def wrap_runs_chart(wrapped, unwrapped, every: int = 15):
-    """Chapter 8: the same drive filtered with the bearing innovation wrapped and not wrapped.
+def wrap_runs_chart(wrapped, unwrapped):
+    r"""Chapter 8: the same drive filtered with the bearing innovation wrapped and not wrapped.
 
-    Left and middle: the map (purple squares), the true path (grey), the estimate
-    (teal) with its 3-sigma position ellipse every ``every`` steps; one panel per
-    run, titled with its largest and final error.  Right: the position error of
-    both runs over time (solid: wrapped, dashed: not wrapped).
+    Left and middle: the map (purple squares), the true path (grey) and the
+    estimate (teal), one panel per run, titled with its largest and final error;
+    a cross marks the true pose at the first step where the two runs part.
+    Right: the position error of both runs over time (teal; solid: wrapped,
+    dashed: not wrapped) and how far each run's 3-sigma position ellipse reaches
+    from its estimate, :math:`3\sqrt{\lambda_{\max}(\Sigma_{xy})}` (grey).  Where a
+    run's error is above its reach, the truth lies outside its 3-sigma ellipse.
+    The ellipses themselves are a few centimetres across, too small to see on
+    the map, so they are shown by their reach.
 
     Introduced in chapter 8.
 
     Parameters
     ----------
     wrapped, unwrapped : object with ``t, truth, landmarks, mu, Sig, error``
-        Run records such as the ones :func:`kfcourse.sim.landmark_loop` returns.
-    every : int
-        Steps between two drawn ellipses (>= 1).
+        Run records such as the ones :func:`kfcourse.sim.landmark_loop` returns,
+        of the same drive.
 
     Returns
     -------
     matplotlib.figure.Figure
     """
-    every = v.whole(every, "every", 1)
     fig, (ax_a, ax_b, ax_e) = new_figure(11.0, 3.9, ncols=3, gridspec_kw={"width_ratios": [1, 1, 1.1]})
+    parted = np.flatnonzero(np.any(np.asarray(wrapped.mu) != np.asarray(unwrapped.mu), axis=1))
     for ax, run, name in ((ax_a, wrapped, "bearing innovation wrapped"), (ax_b, unwrapped, "not wrapped")):
         ax.plot(run.truth[:, 0], run.truth[:, 1], color=palette.TRUTH, lw=2.5, label="truth")
         ax.plot(run.mu[:, 0], run.mu[:, 1], color=palette.ESTIMATE, lw=1.5, label="EKF estimate")
-        for k in range(0, run.t.size, every):
-            covariance_ellipse(ax, run.mu[k, :2], run.Sig[k, :2, :2], nsig=3.0, lw=1.0)
         landmarks(ax, run.landmarks)
         ax.set_aspect("equal", adjustable="datalim")
         ax.set_xlabel("x (m)")
         ax.set_title(f"{name}\nlargest error {run.error.max():.2f} m, final {run.error[-1]:.2f} m", fontsize=10)
+    if parted.size:
+        k0 = parted[0]
+        (mark,) = ax_b.plot(*unwrapped.truth[k0, :2], "x", color=palette.INK, ms=9, mew=2, label="where the runs part")
+        ax_b.legend(handles=[mark], loc="lower left", fontsize=8)
     ax_a.set_ylabel("y (m)")
     ax_a.legend(loc="upper left", fontsize=8)
-    ax_e.plot(wrapped.t, wrapped.error, color=palette.ESTIMATE, lw=2, label="wrapped")
-    ax_e.plot(unwrapped.t, unwrapped.error, color=palette.ESTIMATE, lw=2, ls="--", label="not wrapped")
+    for run, ls, name in ((wrapped, "-", "wrapped"), (unwrapped, "--", "not wrapped")):
+        reach = 3.0 * np.sqrt(np.linalg.eigvalsh(np.asarray(run.Sig)[:, :2, :2])[:, -1])  # 3 sqrt(largest eigenvalue)
+        ax_e.plot(run.t, run.error, color=palette.ESTIMATE, lw=2, ls=ls, label=f"error, {name}")
+        ax_e.plot(run.t, reach, color=palette.INK, lw=1, ls=ls, alpha=0.6, label=f"3σ ellipse's reach, {name}")
     ax_e.set_xlabel("time (s)")
-    ax_e.set_ylabel("position error (m)")
+    ax_e.set_ylabel("distance (m)")
     ax_e.legend(loc="upper left", fontsize=8)
     return fig

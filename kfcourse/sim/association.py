@@ -18,7 +18,7 @@ from .. import _validate as v
 from ..filters.association import associate
 from ..filters.ekf import ekf_update
 from ..filters.linalg import innovation_covariance
-from ..models import range_bearing, range_bearing_jacobian, range_bearing_residual
+from ..models import range_bearing, range_bearing_jacobian, range_bearing_residual, wrap_angle
 from .records import read_only
 
 # The scene (m, rad).  The belief after the predict step, and where the robot really is.
@@ -100,7 +100,7 @@ def association_scan(seed: int = 0, leg: bool = False) -> AssociationScan:
     if leg:
         z = np.vstack([z, range_bearing(SCAN_TRUTH, SCAN_LEG) + noise[-1]])
         source = np.append(source, -1)
-    z[:, 1] = (z[:, 1] + np.pi) % (2 * np.pi) - np.pi  # a sensor reports bearings in [-pi, pi)
+    z[:, 1] = wrap_angle(z[:, 1])  # a sensor reports bearings in (-pi, pi], as h does
     Hs = [range_bearing_jacobian(SCAN_MU_BAR, m) for m in SCAN_LANDMARKS]
     return AssociationScan(
         truth=SCAN_TRUTH,

@@ -5,11 +5,11 @@ from __future__ import annotations
 import numpy as np
 import pytest
 from matplotlib.colors import to_rgba
-from matplotlib.patches import Polygon
+from matplotlib.patches import Ellipse, Polygon
 from matplotlib.path import Path
 
 import kfcourse as kf
-from kfcourse.demos.association import LEG_OPTIONS
+from kfcourse.demos.association import LEG_OPTIONS, ROBOT_SIZE
 from kfcourse.plots import palette
 
 NO_LEG, LEG = LEG_OPTIONS
@@ -17,8 +17,10 @@ NO_LEG, LEG = LEG_OPTIONS
 
 def estimate_drawn(demo) -> np.ndarray:
     """Centre of the teal robot triangle in the picture."""
-    teal = to_rgba(palette.ESTIMATE)
-    (robot,) = [a for a in demo.renderer.dynamic if isinstance(a, Polygon) and a.get_facecolor() == pytest.approx(teal)]
+    teal = to_rgba(palette.ESTIMATE)[:3]
+    (robot,) = [
+        a for a in demo.renderer.dynamic if isinstance(a, Polygon) and a.get_facecolor()[:3] == pytest.approx(teal)
+    ]
     return np.asarray(robot.get_xy(), float)[:3].mean(axis=0)  # the triangle's centroid is the pose
 
 
@@ -64,6 +66,9 @@ def test_prompt_2_a_wide_gate_lets_the_leg_in_and_the_estimate_slides_off():
     assert res.error == pytest.approx(0.29, abs=0.005)
     assert res.error > 4 * kf.sim.gated_update(demo.model.scan, 3.0).error
     assert estimate_drawn(demo) == pytest.approx(res.mu[:2])
+    truth_drawn = np.asarray(demo.renderer.dynamic[-2].get_xy(), float)[:3].mean(axis=0)  # the grey outline
+    assert truth_drawn == pytest.approx(demo.model.scan.truth[:2])
+    assert np.linalg.norm(estimate_drawn(demo) - truth_drawn) > ROBOT_SIZE  # the triangles no longer overlap much
 
 
 def test_prompt_3_a_tight_gate_throws_good_readings_away():
@@ -113,3 +118,35 @@ def test_readout_and_picture_finite_at_the_extremes(leg, gate):
     assert np.isfinite(demo.model.result.mu).all() and np.isfinite(demo.model.result.Sig).all()
     for path in demo.renderer.dynamic[0].get_paths():  # the gates, however wide
         assert np.isfinite(path.vertices).all()
+
+
+def test_question_3_the_readout_either_side_of_the_leg():
+    """Q3: the slider steps by 0.1; at 4.7 the leg is rejected (0.0016 %), at 4.8 accepted (0.00099 %)."""
+    demo = kf.demos.data_association(seed=0)
+    demo.controls["leg"].value = LEG
+    demo.controls["gate"].value = 4.7
+    assert demo.model.result.match[-1] == -1 and "0.0016 %" in demo.children[2].value
+    demo.controls["gate"].value = 4.8
+    assert demo.model.result.match[-1] == 3 and "0.00099 %" in demo.children[2].value
+
+
+def test_the_estimate_ellipse_is_drawn_over_the_robots_and_every_gate_fits_the_picture():
+    """The teal 2-sigma ellipse is the last artist drawn; the 6-sigma gates (the slider's end) lie inside the axes."""
+    demo = kf.demos.data_association(seed=0)
+    demo.controls["leg"].value = LEG
+    demo.controls["gate"].value = 6.0
+    ellipse = demo.renderer.dynamic[-1]
+    assert isinstance(ellipse, Ellipse) and ellipse.get_edgecolor()[:3] == pytest.approx(to_rgba(palette.ESTIMATE)[:3])
+    assert max(ellipse.width, ellipse.height) < 0.25  # m: after four readings, smaller than the robot triangle
+    (ax,) = demo.renderer.fig.axes
+    (x0, x1), (y0, y1) = ax.get_xlim(), ax.get_ylim()
+    for path in demo.renderer.dynamic[0].get_paths():
+        (px0, py0), (px1, py1) = path.vertices.min(axis=0), path.vertices.max(axis=0)
+        assert x0 < px0 and px1 < x1 and y0 < py0 and py1 < y1
+
+
+def test_controls_row_wraps_when_the_notebook_is_narrow():
+    demo = kf.demos.data_association(seed=0)
+    row = demo.children[3]
+    assert demo.controls["gate"] in row.children and demo.controls["leg"] in row.children
+    assert row.layout.flex_flow == "row wrap"

@@ -88,10 +88,18 @@ def fake_run(error, shift):
 def test_wrap_chart_draws_both_runs_with_their_numbers():
     good = fake_run(np.full(40, 0.05), 0.0)
     bad = fake_run(np.linspace(0, 3, 40), 0.5)
-    fig = kf.plots.wrap_runs_chart(good, bad, every=10)
+    fig = kf.plots.wrap_runs_chart(good, bad)
     ax_a, ax_b, ax_e = fig.axes
     assert "3.00 m" in ax_b.get_title() and "0.05 m" in ax_a.get_title()
-    assert len([p for p in ax_a.patches if isinstance(p, Ellipse)]) == 4
-    assert [np.asarray(line.get_ydata()).max() for line in ax_e.get_lines()] == pytest.approx([0.05, 3.0])
-    with pytest.raises(ValueError):
-        kf.plots.wrap_runs_chart(good, bad, every=0)
+    errors, reaches = ax_e.get_lines()[0::2], ax_e.get_lines()[1::2]
+    assert [np.asarray(line.get_ydata()).max() for line in errors] == pytest.approx([0.05, 3.0])
+    for line in reaches:  # 3 sigma along the longest axis of diag(0.01, 0.01): 0.3 m at every step
+        assert np.asarray(line.get_ydata()) == pytest.approx(np.full(40, 0.3))
+
+
+def test_wrap_chart_marks_where_the_runs_part():
+    good = fake_run(np.full(40, 0.05), 0.0)
+    bad = fake_run(np.linspace(0, 3, 40), np.where(np.arange(40)[:, None] >= 25, 0.5, 0.0))
+    fig = kf.plots.wrap_runs_chart(good, bad)
+    (mark,) = [line for line in fig.axes[1].get_lines() if line.get_marker() == "x"]
+    assert (mark.get_xdata()[0], mark.get_ydata()[0]) == pytest.approx(tuple(bad.truth[25, :2]))

@@ -83,7 +83,7 @@ def test_the_leg_does_not_change_the_landmarks_readings():
 
 def test_record_is_read_only_and_bearings_in_range():
     scan = kf.sim.association_scan(0, leg=True)
-    assert np.all(np.abs(scan.z[:, 1]) <= np.pi)
+    assert np.all((scan.z[:, 1] > -np.pi) & (scan.z[:, 1] <= np.pi))  # (-pi, pi], like h
     with pytest.raises(ValueError):
         scan.z[0, 0] = 1.0
     with pytest.raises(ValueError):
