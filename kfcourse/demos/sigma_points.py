@@ -17,6 +17,8 @@ from .linearization import FUNCTIONS, LinearizationModel, _density
 N_SAMPLES = 20_000  # fixed standard-normal draws, rescaled by the sliders
 X_RANGE = (-5.0, 5.0)  # the sigma points reach m +- sqrt(1 + lam) s = 2 + 2 * 1.5 at the sliders' extremes
 N_BINS = 60
+DENSITY_CAP = 1.5  # output densities are cut at 1.5 times the sampled peak, inside the panel's 1.6
+ARROW = 0.3  # length of the arrow drawn for a variance of 0: all the probability at one value
 # Output-axis limits for this demo's wider input range (the functions themselves are chapter 7's).
 Y_LIMITS = {"x²": (-1.0, 25.0), "sin x": (-1.5, 1.5), "range √(x² + 1)": (0.0, 5.5)}
 
@@ -41,6 +43,14 @@ class SigmaPointsModel(LinearizationModel):
     def ukf(self) -> tuple[float, float]:
         """The UKF's output Gaussian: the unscented transform of N(m, s^2) through f."""
         return unscented_1d(self.m, self.s * self.s, FUNCTIONS[self.function][0], self.lam)
+
+    def exact(self) -> tuple[float, float] | None:
+        """The exact output mean and variance, known in closed form for y = x² only (None otherwise):
+        m² + s² and 4 m² s² + 2 s⁴."""
+        if self.function != "x²":
+            return None
+        m2, s2 = self.m * self.m, self.s * self.s
+        return m2 + s2, 4 * m2 * s2 + 2 * s2 * s2  # E[x²], Var[x²] for x ~ N(m, s²)
 
 
 def sigma_points(seed: int = 0) -> Demo:
@@ -77,7 +87,7 @@ def sigma_points(seed: int = 0) -> Demo:
     on_curve = ax_f.scatter(
         [0, 0, 0], [0, 0, 0], s=40, color=palette.PREDICTION, edgecolor=palette.PREDICTION, lw=1.5, zorder=3
     )
-    ax_f.legend(loc="upper left", fontsize=9)
+    ax_f.legend(loc="upper center", fontsize=9)  # the middle top: empty above all three curves
     (inp,) = ax_in.plot(x, x, color=palette.PREDICTION, lw=2)
     on_input = ax_in.scatter(
         [0, 0, 0], [0, 0, 0], s=40, color=palette.PREDICTION, edgecolor=palette.PREDICTION, lw=1.5, zorder=3
@@ -89,10 +99,14 @@ def sigma_points(seed: int = 0) -> Demo:
     on_output = ax_out.scatter(
         [0, 0, 0], [0, 0, 0], s=40, color=palette.ESTIMATE, edgecolor=palette.ESTIMATE, lw=1.5, zorder=3
     )
-    ax_out.legend(loc="upper right", fontsize=8)
+    # Above the panel, where no output density can reach it.
+    ax_out.legend(
+        loc="lower center", bbox_to_anchor=(0.5, 1.0), ncol=3, fontsize=8, frameon=False, handlelength=1.4,
+        columnspacing=0.8, handletextpad=0.4,
+    )  # fmt: skip
     # The readout: its labels are static (drawn once), only the numbers are redrawn, in the same monospace grid.
     text_style = {"transform": ax_txt.transAxes, "ha": "left", "va": "top", "fontsize": 8.5, "family": "monospace"}
-    ax_txt.text(-0.12, 1.0, "sigma points\nweights\n\n\nsampled\nUKF\nEKF", **text_style)
+    labels = ax_txt.text(-0.12, 1.0, "", **text_style)  # row names: set with the function (only x² has "exact")
     ax_txt.text(-0.12, 1.0, "\n\n\n" + " " * 12 + "mean" + " " * 7 + "var", **text_style)
     info = ax_txt.text(-0.12, 1.0, "", **text_style)
     renderer = FigureRenderer(fig, [tangent, guides, on_curve, inp, on_input, hist, ukf, ekf, on_output, info])
@@ -100,9 +114,12 @@ def sigma_points(seed: int = 0) -> Demo:
 
     def output_density(line, mean, var, top, lo, hi, grid):
         if var > 1e-12 * (hi - lo) ** 2:
-            line.set_data(np.minimum(_density(grid, mean, var) / top, 2.0), grid)
-        else:  # no spread at all: a spike at the mean
-            line.set_data([0.0, 0.0, 2.0, 0.0, 0.0], [lo, mean, mean, mean, hi])
+            line.set_data(np.minimum(_density(grid, mean, var) / top, DENSITY_CAP), grid)
+            line.set_marker("None")
+        else:  # no spread at all: a short arrow at the mean, all the probability at one value
+            line.set_data([0.0, 0.0, ARROW, 0.0, 0.0], [lo, mean, mean, mean, hi])
+            line.set_marker(">")
+            line.set_markevery([2])
 
     def draw() -> None:
         f, df, _ = FUNCTIONS[model.function]
@@ -110,6 +127,8 @@ def sigma_points(seed: int = 0) -> Demo:
         if shown["function"] != model.function:  # a new curve and output axis: redraw the background
             curve.set_ydata(f(x))
             ax_f.set_ylim(lo, hi)
+            rows = "sampled\nUKF\nEKF" + ("\nexact" if model.exact() is not None else "")
+            labels.set_text("sigma points\nweights\n\n\n" + rows)
             shown["function"] = model.function
             renderer.invalidate()
         m, s = model.m, model.s
@@ -141,9 +160,12 @@ def sigma_points(seed: int = 0) -> Demo:
         mean_y, var_y = float(y.mean()), float(y.var())
         mean_u, var_u = model.ukf()
         mean_e, var_e = model.ekf()
+        moments = [(mean_y, var_y), (mean_u, var_u), (mean_e, var_e)]
+        if model.exact() is not None:
+            moments.append(model.exact())
         output_density(ukf, mean_u, var_u, top, lo, hi, grid)
         output_density(ekf, mean_e, var_e, top, lo, hi, grid)
-        order = [2, 0, 1]  # left to right: m - spread, m, m + spread
+        order = [2, 0, 1]  # the points are made as m, m + spread, m - spread; shown left to right
         info.set_text(
             " " * 12
             + "".join(f"{chi[i]:6.2f}" for i in order)
@@ -151,16 +173,15 @@ def sigma_points(seed: int = 0) -> Demo:
             + " " * 12
             + "".join(f"{w[i]:6.2f}" for i in order)
             + "\n\n\n"
-            + "\n".join(
-                f"{'':7}{mean:9.3f} {var:9.4f}" for mean, var in ((mean_y, var_y), (mean_u, var_u), (mean_e, var_e))
-            )
+            + "\n".join(f"{'':7}{mean:9.3f} {var:9.4f}" for mean, var in moments)
         )
 
     caption = (
         "<b>Sigma points.</b> Purple: the input N(m, s²) and its three sigma points m, m ± √(1+λ)·s "
         "(dot size: weight; a ring: weight 0), carried up the curve f (black) along dotted paths. Right: teal, the "
         "UKF's Gaussian from their images; orange dashed, the EKF's tangent at m and its Gaussian; grey, the sampled "
-        "true output. Controls: the function f, the input mean m and width s, the spread λ."
+        "true output (20 000 draws; for x² the readout also gives the exact moments). An arrow: variance 0. "
+        "Controls: the function f, the input mean m and width s, the spread λ."
     )
     return Demo(
         name="sigma-points",

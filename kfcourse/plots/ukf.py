@@ -19,7 +19,9 @@ def transform_moments_chart(y, ukf, ekf, bins: int = 80, y_range=None):
     """Chapter 9: the samples of a transformed Gaussian against the UKF's and the EKF's Gaussians.
 
     A grey histogram of the true output samples ``y``; the UKF's Gaussian (teal)
-    and the EKF's (orange, dashed); a dotted line at each mean (grey: the samples').
+    and the EKF's (orange, dashed); a dotted line at each filter's mean, and a wide
+    pale grey band at the samples' mean, so that it still shows when a filter's
+    mean lies on it.
 
     Introduced in chapter 9.
 
@@ -67,7 +69,9 @@ def transform_moments_chart(y, ukf, ekf, bins: int = 80, y_range=None):
         ls="--",
         label=f"EKF N({mean_e:.3g}, {var_e:.3g})",
     )
-    for mean, colour in ((float(y.mean()), palette.TRUTH), (mean_u, palette.ESTIMATE), (mean_e, palette.MEASUREMENT)):
+    # The samples' mean: a wide band under the filters' dotted means, visible even where one of them lies on it.
+    ax.axvline(float(y.mean()), color=palette.TRUTH, lw=5.0, alpha=0.5, zorder=1.5, label="samples' mean")
+    for mean, colour in ((mean_u, palette.ESTIMATE), (mean_e, palette.MEASUREMENT)):
         ax.axvline(mean, color=colour, lw=1.2, ls=":")
     ax.set_xlim(lo, hi)
     ax.set_xlabel("output y = f(x)")
@@ -85,8 +89,9 @@ def filter_comparison_chart(ekf, ukf):
     """Chapter 9: the same drive followed by an EKF and by a UKF.
 
     Left: the map, the true path (grey), the EKF's estimate (orange, dashed), the
-    UKF's (teal) and the landmarks (purple squares).  Right: the position error of
-    each over time, with its RMS in the legend.
+    UKF's (teal) and the landmarks (purple squares), with the legend above the map
+    so that it hides no landmark.  Right: the position error of each over time,
+    with its RMS in the legend.
 
     Introduced in chapter 9.
 
@@ -106,11 +111,11 @@ def filter_comparison_chart(ekf, ukf):
     ax_map.plot(ekf.truth[:, 0], ekf.truth[:, 1], color=palette.TRUTH, lw=3, label="truth")
     ax_map.plot(ekf.mu[:, 0], ekf.mu[:, 1], color=palette.MEASUREMENT, lw=1.6, ls="--", label="EKF")
     ax_map.plot(ukf.mu[:, 0], ukf.mu[:, 1], color=palette.ESTIMATE, lw=1.6, label="UKF")
-    landmarks(ax_map, ekf.landmarks)
+    landmarks(ax_map, ekf.landmarks, label="landmarks")
     ax_map.set_aspect("equal", adjustable="datalim")
     ax_map.set_xlabel("x (m)")
     ax_map.set_ylabel("y (m)")
-    ax_map.legend(loc="upper left", fontsize=8)
+    ax_map.legend(loc="lower center", bbox_to_anchor=(0.5, 1.0), ncol=4, fontsize=8, frameon=False)
     ax_e.plot(ekf.t, ekf.error, color=palette.MEASUREMENT, lw=1.8, ls="--", label=f"EKF, RMS {_rms(ekf.error):.3f} m")
     ax_e.plot(ukf.t, ukf.error, color=palette.ESTIMATE, lw=1.8, label=f"UKF, RMS {_rms(ukf.error):.3f} m")
     ax_e.set_xlabel("time (s)")

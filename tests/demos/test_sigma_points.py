@@ -14,7 +14,7 @@ from matplotlib.patches import Polygon
 
 import kfcourse as kf
 from kfcourse.demos.linearization import FUNCTIONS
-from kfcourse.demos.sigma_points import X_RANGE, Y_LIMITS
+from kfcourse.demos.sigma_points import ARROW, DENSITY_CAP, X_RANGE, Y_LIMITS
 
 SQUARE, SINE, RANGE = "x²", "sin x", "range √(x² + 1)"
 TRUE_F = {SQUARE: lambda x: x * x, SINE: np.sin, RANGE: lambda x: np.sqrt(x * x + 1.0)}  # written out again here
@@ -30,11 +30,14 @@ def demo_at(function: str = SQUARE, m: float = 2.0, s: float = 1.0, lam: float =
 
 
 def readout(demo) -> dict[str, tuple[float, float]]:
-    """The (mean, var) rows of the readout the picture shows: static row labels, redrawn numbers."""
+    """The (mean, var) rows of the readout the picture shows: static row labels, redrawn numbers
+    ("exact" only where the picture has that row)."""
+    demo.renderer.png()  # the labels are drawn with the background
     labels = demo.renderer.fig.axes[3].texts[0].get_text().split("\n")
     numbers = demo.renderer.dynamic[-1].get_text().split("\n")
     assert len(labels) == len(numbers)
-    return {name: tuple(float(x) for x in numbers[labels.index(name)].split()) for name in ("sampled", "UKF", "EKF")}
+    names = [name for name in ("sampled", "UKF", "EKF", "exact") if name in labels]
+    return {name: tuple(float(x) for x in numbers[labels.index(name)].split()) for name in names}
 
 
 def drawn(artist) -> np.ndarray:
@@ -64,7 +67,49 @@ def test_first_frame_is_the_lessons_worked_example():
     rows = readout(demo)
     assert rows["UKF"] == (5.0, 16.0)
     assert rows["EKF"] == (4.0, 16.0)
+    assert rows["exact"] == (5.0, 18.0)
     assert rows["sampled"] == pytest.approx((5.0, 18.0), rel=0.03)
+
+
+@pytest.mark.parametrize(("m", "s"), [(2.0, 1.0), (2.0, 1.5), (0.0, 1.0), (-1.35, 0.45), (1.0, 0.05)])
+def test_exact_row_is_the_closed_form_for_x_squared_and_the_sampled_row_wobbles_a_little(m, s):
+    """The chapter: the exact row is m² + s², 4 m² s² + 2 s⁴; the sampled row is within a percent or two of it."""
+    rows = readout(demo_at(SQUARE, m, s))
+    assert rows["exact"] == pytest.approx(exact_square(m, s), abs=1e-3 + 1e-4)  # printed to 3 and 4 decimals
+    assert rows["sampled"][1] == pytest.approx(rows["exact"][1], rel=0.025)
+    assert rows["sampled"][0] == pytest.approx(rows["exact"][0], rel=0.02, abs=1e-3)
+
+
+def test_exact_row_only_for_x_squared():
+    demo = demo_at(SINE, 1.5, 1.5)
+    assert demo.model.exact() is None and "exact" not in readout(demo)
+    demo.controls["function"].value = RANGE
+    assert demo.model.exact() is None and "exact" not in readout(demo)
+    demo.controls["function"].value = SQUARE
+    assert readout(demo)["exact"] == pytest.approx(exact_square(1.5, 1.5), abs=1e-3)
+
+
+def test_output_legend_sits_above_the_panel_and_densities_stay_inside_it():
+    """At sin x, m = 1.5, s = 1.5 the legend is clear of the EKF's tall Gaussian (at y = 1) and the UKF's very
+    narrow one is cut inside the panel; a variance of 0
+    (x², m = 0) is a short arrow, not a line across the panel."""
+    demo = demo_at(SINE, 1.5, 1.5)
+    fig = demo.renderer.fig
+    demo.renderer.png()
+    ax_out = fig.axes[1]
+    renderer = fig.canvas.get_renderer()
+    legend_box = ax_out.get_legend().get_window_extent(renderer)
+    assert legend_box.y0 >= ax_out.get_window_extent(renderer).y1 - 1.0  # above the panel
+    ukf_line = demo.renderer.dynamic[6]
+    dens, _ = ukf_line.get_data()
+    assert np.max(dens) == pytest.approx(DENSITY_CAP) and DENSITY_CAP < ax_out.get_xlim()[1]
+    demo = demo_at(SQUARE, 0.0, 1.0)
+    for line in demo.renderer.dynamic[6:8]:  # the UKF's and the EKF's: both variance 0 here
+        dens, _ = line.get_data()
+        assert np.max(dens) == pytest.approx(ARROW) and line.get_marker() == ">"
+    demo.controls["m"].value = 1.0
+    for line in demo.renderer.dynamic[6:8]:
+        assert line.get_marker() == "None"
 
 
 @pytest.mark.parametrize(
@@ -79,10 +124,11 @@ def test_ukf_readout_is_unscented_1d_at_the_slider_values(function, m, s, lam):
     assert demo.model.ukf() == pytest.approx(expected, rel=1e-12, abs=1e-12)
     shown = readout(demo)["UKF"]
     assert shown == pytest.approx(expected, abs=1e-3 + 1e-4)  # printed to 3 and 4 decimals
-    # The teal curve is N(mean, var) of that readout, drawn relative to the sampled peak: its peak sits at the mean.
+    # The teal curve is N(mean, var) of that readout, drawn relative to the sampled peak and cut at DENSITY_CAP:
+    # its peak (the middle of the cut, if cut) sits at the mean.
     dens, grid = demo.renderer.dynamic[6].get_data()
     if expected[1] > 1e-9:
-        assert grid[np.argmax(dens)] == pytest.approx(expected[0], abs=2 * (grid[1] - grid[0]))
+        assert np.mean(grid[dens == dens.max()]) == pytest.approx(expected[0], abs=2 * (grid[1] - grid[0]))
 
 
 @pytest.mark.parametrize(("m", "s"), [(2.0, 1.0), (0.0, 1.0), (-1.5, 0.5), (1.0, 1.5), (0.5, 0.05)])
@@ -148,10 +194,12 @@ def test_bad_lam_is_refused_by_the_model():
 
 def test_try_widen_and_narrow_the_input():
     """Prompt 1: from the first frame drag s to 1.5: the UKF's mean follows the truth to m² + s² = 6.25
-    while the EKF stays at 4, and the UKF's variance (36) falls well short of the true 46.1.
+    while the EKF stays at 4, and the UKF's variance (36) falls well short of the exact 46.1 (the exact row).
     Drag s to 0.1: all three agree."""
     demo = demo_at(SQUARE, 2.0, 1.5)
     rows = readout(demo)
+    assert rows["exact"] == pytest.approx((6.25, 46.125), abs=1e-3)
+    assert rows["exact"][1] - rows["UKF"][1] > 10.0
     assert rows["UKF"] == pytest.approx((6.25, 36.0))
     assert rows["EKF"] == pytest.approx((4.0, 36.0))
     assert rows["sampled"][0] == pytest.approx(6.25, abs=0.1)
@@ -165,13 +213,15 @@ def test_try_widen_and_narrow_the_input():
 
 
 def test_try_lam_two_makes_the_variance_exact():
-    """Prompt 2: with x², λ = 2 makes the UKF's variance the exact 4 m² s² + 2 s⁴ (18 at the first frame)
-    at any m and s; λ = 3 overshoots."""
+    """Prompt 2: with x², λ = 2 makes the UKF's variance 18, the exact row's 4 m² s² + 2 s⁴, and it stays
+    equal to the exact row at any m and s; λ = 3 overshoots."""
     demo = demo_at(SQUARE, 2.0, 1.0, 2.0)
     assert readout(demo)["UKF"] == pytest.approx((5.0, 18.0))
-    for m, s in ((-1.0, 0.5), (0.0, 1.5), (1.5, 1.2)):
+    assert readout(demo)["UKF"] == readout(demo)["exact"]
+    for m, s in ((-1.0, 0.5), (0.0, 1.5), (1.5, 1.2), (-2.0, 0.05)):
         demo.controls["m"].value, demo.controls["s"].value = m, s
         assert readout(demo)["UKF"] == pytest.approx(exact_square(m, s), abs=1e-3)
+        assert readout(demo)["UKF"] == pytest.approx(readout(demo)["exact"], abs=1.01e-3)
         assert readout(demo)["UKF"][1] == pytest.approx(readout(demo)["sampled"][1], rel=0.06)
     demo.controls["m"].value, demo.controls["s"].value = 2.0, 1.0
     demo.controls["lam"].value = 3.0

@@ -36,6 +36,11 @@ def test_moments_chart_draws_the_samples_and_both_gaussians():
         assert np.trapezoid(dens, grid) == pytest.approx(mass, abs=1e-3)  # N(mean, 16) over (-1, 25)
         assert np.allclose(mean_line.get_xdata(), mean)
     assert "UKF N(5, 16)" in [t.get_text() for t in ax.get_legend().get_texts()]
+    # The samples' mean (here on the UKF's) is a wide band under the filters' dotted lines: all three show.
+    (band,) = [line for line in ax.get_lines() if line.get_label() == "samples' mean"]
+    assert np.allclose(band.get_xdata(), y.mean()) and abs(y.mean() - 5.0) < 0.05
+    (_, ukf_mean) = lines_of(ax, palette.ESTIMATE)
+    assert band.get_linewidth() > 3 * ukf_mean.get_linewidth() and band.get_zorder() < ukf_mean.get_zorder()
     png = fig._repr_png_()
     assert png[:4] == b"\x89PNG" and len(png) > 5_000
 
@@ -63,6 +68,23 @@ def test_comparison_chart_draws_both_estimates_and_errors(runs):
     assert labels[1] == f"UKF, RMS {np.sqrt(np.mean(ukf.error**2)):.3f} m"
     png = fig._repr_png_()
     assert png[:4] == b"\x89PNG" and len(png) > 10_000
+
+
+@pytest.mark.parametrize("motion_noise", [1.0, 50.0])
+def test_comparison_chart_shows_every_landmark_clear_of_the_legend(motion_noise):
+    ekf = kf.sim.landmark_loop(0, filter="ekf", motion_noise=motion_noise)
+    ukf = kf.sim.landmark_loop(0, filter="ukf", motion_noise=motion_noise)
+    fig = kf.plots.filter_comparison_chart(ekf, ukf)
+    fig.canvas.draw()
+    ax_map = fig.axes[0]
+    renderer = fig.canvas.get_renderer()
+    assert len(ekf.landmarks) == 7
+    points = ax_map.transData.transform(ekf.landmarks)  # pixels
+    axes_box = ax_map.get_window_extent(renderer)
+    legend_box = ax_map.get_legend().get_window_extent(renderer).padded(6.0)  # a square's half-width in pixels
+    for (px, py), landmark in zip(points, ekf.landmarks, strict=True):
+        assert axes_box.x0 < px < axes_box.x1 and axes_box.y0 < py < axes_box.y1, landmark
+        assert not legend_box.contains(px, py), landmark
 
 
 def test_comparison_chart_refuses_two_different_drives(runs):
