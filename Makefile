@@ -53,6 +53,7 @@ bench: $(STAMP)
 	$(BIN)/python benchmarks/bench_filters.py
 	$(BIN)/python benchmarks/bench_demos.py
 	$(BIN)/python benchmarks/bench_batch.py
+	$(BIN)/python benchmarks/bench_check.py
 
 # Re-execute the notebooks and store the outputs of the NBVAL_CHECK_OUTPUT cells only.
 notebooks: $(STAMP)
