@@ -149,10 +149,10 @@ def landmark_loop(seed: int = 0) -> Demo:
         "<b>Landmark loop.</b> Purple squares: landmarks. Grey: true path and robot. Teal: the filter's estimate, "
         "trail, 2σ ellipse and beams to the readings it uses; dashed orange: readings it rejects (over 4σ off); "
         "dashed purple: the 2σ ellipse before this step's readings. Strips: x and y error (truth − estimate) in the "
-        "filter's own ±2σ band. <i>process noise</i> / <i>measurement noise</i> scale the odometry noise and R "
-        "(trust in odometry) / the reading noise and Q (trust in the sensor); <i>sensor dropout</i> blinds steps "
-        f"{DROPOUT[0]}–{DROPOUT[1] - 1}; <i>filter</i>: EKF or UKF on the same noise; <i>Kidnap</i> moves the true "
-        "robot half a lap on at this step."
+        "filter's own ±2σ band. <i>process noise</i> / <i>measurement noise</i> scale the odometry noise and "
+        "R<sub>t</sub> (trust in odometry) / the reading noise and Q (trust in the sensor); <i>sensor dropout</i> "
+        f"blinds steps {DROPOUT[0]}–{DROPOUT[1] - 1}; <i>filter</i>: EKF or UKF on the same noise; <i>Kidnap</i> moves "
+        "the true robot half a lap on at this step."
     )
     lo, hi = NOISE_RANGE
     demo = Demo(

@@ -1,8 +1,9 @@
 r"""The landmark localization loop (chapter 10): the map and the error strips.
 
 The map shows the landmarks (purple squares), the true path and robot (faint
-grey), the filter's trail and robot (teal), its 2-sigma position ellipse after
-the step's readings (teal) and before them (dashed purple, the prediction),
+grey), the filter's trail and robot (teal, lightly filled), its 2-sigma position
+ellipse after the step's readings (teal) and before them (dashed purple, the
+prediction), drawn over the robots so that a small ellipse still shows,
 teal beams from the estimate to the landmarks the filter used at that step, and
 dashed orange beams to those whose readings it rejected (outside its gate).
 
@@ -24,6 +25,7 @@ from dataclasses import dataclass
 
 import numpy as np
 from matplotlib.collections import LineCollection, PolyCollection
+from matplotlib.colors import to_rgba
 from matplotlib.lines import Line2D
 from matplotlib.patches import Ellipse, Polygon, Rectangle
 from matplotlib.text import Text
@@ -43,6 +45,7 @@ from .style import new_figure, nice_limit
 MAP_MARGIN = 1.5  # m of room around the landmarks and the true path
 ROBOT_SIZE = 0.45  # m from the robot's centre to its nose
 TRUTH_SIZE = 0.65  # m: the true robot is drawn larger, so it shows round an estimate on top of it
+ROBOT_FILL = 0.3  # opacity of the estimated robot's fill: a small ellipse on top of it stays visible
 NSIG = 2.0  # the map's ellipses and the strips' bands are 2-sigma
 AXES = ("x", "y")
 
@@ -126,9 +129,9 @@ class LoopMap:
             self.rejected,
             self.trail,
             self.truth_robot,
+            self.robot,
             self.prior_ring,
             self.ring,
-            self.robot,
             self.note,
         ]
 
@@ -168,12 +171,20 @@ def loop_map(ax, run, k: int | None = None, legend: bool = True) -> LoopMap:
     (trail,) = ax.plot([], [], color=palette.ESTIMATE, lw=1.6, alpha=0.9, label="estimate so far")
     start = np.asarray(run.start, float)
     truth_robot = robot(ax, start, color=palette.TRUTH, size=TRUTH_SIZE, alpha=0.8, zorder=3, label="true robot")
-    est_robot = robot(ax, start, color=palette.ESTIMATE, size=ROBOT_SIZE, zorder=5, label="estimated robot")
+    est_robot = robot(
+        ax,
+        start,
+        color=palette.ESTIMATE,
+        facecolor=to_rgba(palette.ESTIMATE, ROBOT_FILL),
+        size=ROBOT_SIZE,
+        zorder=4,
+        label="estimated robot",
+    )
     eye = np.eye(2)
     prior_ring = covariance_ellipse(
-        ax, start, eye, nsig=NSIG, color=palette.PREDICTION, lw=1.3, ls="--", zorder=4, label="2σ before readings"
+        ax, start, eye, nsig=NSIG, color=palette.PREDICTION, lw=1.3, ls="--", zorder=5, label="2σ before readings"
     )
-    ring = covariance_ellipse(ax, start, eye, nsig=NSIG, lw=2.0, zorder=4, label="2σ after readings")
+    ring = covariance_ellipse(ax, start, eye, nsig=NSIG, lw=2.0, zorder=6, label="2σ after readings")
     lines = beams(ax)
     refused = beams(ax, color=palette.MEASUREMENT, linestyles="--", lw=1.4)
     note = ax.text(

@@ -106,7 +106,7 @@ def test_kidnap_button_carries_the_robot_off_at_the_step_shown_and_undoes():
 def test_picture_shows_the_step():
     demo = make()
     m = demo.model
-    (truth_before, truth_after, beams, rejected, trail, truth_robot, prior_ring, ring, robot, note), strips = views(
+    (truth_before, truth_after, beams, rejected, trail, truth_robot, robot, prior_ring, ring, note), strips = views(
         demo
     )
     demo.controls["dropout"].value = True
@@ -182,7 +182,8 @@ def try_1_a_normal_lap_is_accurate_and_honest(demo):
             break
     assert len(errors) == m.run.t.size
     assert max(errors) < 0.15  # "never more than 15 cm"
-    assert 0.001 <= min(areas) and max(areas) < 0.01  # "between 0.001 and 0.01 m²"
+    assert 0.001 <= min(areas) and max(areas) < 0.01  # "the 1-sigma area after the readings: 0.001 to 0.01 m²"
+    assert round(bar_area(m.run, 0), 3) == 0.032  # "the readout's before starts higher, 0.032 m² at step 0"
     assert (min(beams), max(beams)) == (1, 3)  # "one to three beams"
     assert "so far at 99% of the steps" in readout(demo)
 
@@ -196,7 +197,8 @@ def try_2_dropout_balloons_then_three_readings_cut_it_tenfold(demo):
     for k in range(DROPOUT[0], DROPOUT[1]):
         demo.controls["frame"].value = k
         assert m.blind() and "sensor blind" in readout(demo) and run.used[k].sum() == 0
-    assert round(start, 4) == 0.0033 and round(run.area[DROPOUT[1] - 1], 3) == 0.078  # "0.0033 to 0.078 m²"
+    assert round(start, 4) == 0.0033 and round(run.area[DROPOUT[1] - 1], 3) == 0.078  # "0.0033 at 39 to 0.078 at 69"
+    assert (np.diff(run.area[DROPOUT[0] - 1 : DROPOUT[1]]) > 0).all()  # "grows at every step"
     assert run.area[DROPOUT[1] - 1] / start > 20  # "more than twenty times"
     demo.controls["frame"].value = DROPOUT[1]
     before, after = m.areas()
@@ -220,6 +222,13 @@ def try_3_push_the_process_noise_until_it_breaks(demo):
     before, after = m.areas()
     assert round(before, 1) == 5.8 and round(after, 3) == 0.013 and after / before < 0.005
     assert round(run.error[DROPOUT[1]], 2) == 0.39
+    k = DROPOUT[1]
+    assert (run.used[k].sum(), run.rejected[k].sum()) == (2, 1)  # "one beam turns orange"
+    assert "uses 2 readings" in readout(demo) and "rejects 1" in readout(demo) and "<b>outside</b>" in readout(demo)
+    assert not run.inside[k] and run.inside[k + 1]  # "outside the 3σ ellipse ... back inside" one step later
+    assert round(np.linalg.norm(run.truth[k, :2] - run.mu_bar[k, :2]), 1) == 1.8  # "a tangent ... 1.8 m wrong"
+    demo.controls["frame"].value = k + 1
+    assert "uses 3 readings" in readout(demo) and "<b>outside</b>" not in readout(demo)
 
 
 def try_4_precise_sensor_after_a_blind_stretch_ekf_against_ukf(demo):
@@ -238,6 +247,9 @@ def try_4_precise_sensor_after_a_blind_stretch_ekf_against_ukf(demo):
     run = m.run
     assert (run.used[k].sum(), run.rejected[k].sum()) == (3, 0)
     assert round(run.error[k], 2) == 0.04
+    assert round(run.area[k], 4) == 0.0005 and not run.inside[k]  # "1σ area 0.0005 m², outside its 3σ ellipse"
+    assert "<b>outside</b>" in readout(demo)  # "and the readout says so"
+    assert run.inside[k + 1]  # "back inside at step 71"
 
 
 def try_5_kidnap_the_filter_stays_confidently_wrong(demo):

@@ -49,3 +49,13 @@ def test_kidnap_splits_the_true_path(run):
 def test_a_step_outside_the_run_is_refused(run, k):
     with pytest.raises(ValueError, match="k must be a step of the run"):
         kf.plots.loop_chart(run, k=k)
+
+
+def test_the_ellipses_are_drawn_over_the_estimated_robot(run):
+    """A 2-sigma ellipse of a few centimetres must not hide under the robot's triangle."""
+    _, ax_map, _ = loop_figure(run)
+    view = loop_map(ax_map, run, 60)
+    for ring in (view.ring, view.prior_ring):
+        assert ring.get_zorder() > view.robot.get_zorder()  # the static chart draws by zorder
+        assert view.moving.index(ring) > view.moving.index(view.robot)  # the demo's renderer draws in this order
+    assert view.robot.get_facecolor()[3] < 1.0  # a see-through fill
