@@ -196,17 +196,17 @@ def unicycle_jacobian(state, u, dt) -> np.ndarray:
 
 
 def unicycle_control_jacobian(state, u, dt) -> np.ndarray:
-    r"""Jacobian :math:`V = \partial g / \partial (V, \omega)` of :func:`unicycle`: how each control moves the pose.
+    r"""Jacobian :math:`W = \partial g / \partial (V, \omega)` of :func:`unicycle`: how each control moves the pose.
 
     With :math:`h = \omega\Delta t/2`, :math:`s = \sin h / h`, :math:`d = V\Delta t\, s`, :math:`\varphi = \theta + h`:
 
-    .. math:: V = \begin{bmatrix}
+    .. math:: W = \begin{bmatrix}
                   \Delta t\, s\cos\varphi & \tfrac{\Delta t}{2}(V\Delta t\, s'\cos\varphi - d\sin\varphi) \\
                   \Delta t\, s\sin\varphi & \tfrac{\Delta t}{2}(V\Delta t\, s'\sin\varphi + d\cos\varphi) \\
                   0 & \Delta t \end{bmatrix},
               \qquad s' = \frac{\cos h - s}{h} \to -\frac{h}{3} \text{ as } h \to 0
 
-    It carries odometry noise into the pose: :math:`R = V M V^\top`.  Introduced in chapter 10.
+    It carries odometry noise into the pose: :math:`R = W M W^\top`.  Introduced in chapter 10.
 
     Parameters
     ----------

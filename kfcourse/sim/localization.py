@@ -109,9 +109,9 @@ def _dropout(dropout) -> tuple[int, int] | None:
 def process_noise_of_odometry(mu, u, dt: float, M) -> np.ndarray:
     r"""Process noise R of one step when the noise is in the odometry: the control noise mapped into the pose.
 
-    .. math:: R = V M V^\top, \qquad V = \partial g / \partial u \text{ at } (\mu, u)
+    .. math:: R = W M W^\top, \qquad W = \partial g / \partial u \text{ at } (\mu, u)
 
-    ``V`` is :func:`~kfcourse.models.unicycle_control_jacobian`.  R has rank 2 (two noisy
+    ``W`` is :func:`~kfcourse.models.unicycle_control_jacobian`.  R has rank 2 (two noisy
     controls move three pose numbers).  Introduced in chapter 10.
 
     Parameters
@@ -130,8 +130,8 @@ def process_noise_of_odometry(mu, u, dt: float, M) -> np.ndarray:
     ndarray, shape (3, 3)
     """
     M = v.covariance(M, "M", 2)
-    V = unicycle_control_jacobian(mu, u, dt)  # (3, 2): how each control moves the pose
-    return V @ M @ V.T  # R = V M V^T
+    W = unicycle_control_jacobian(mu, u, dt)  # (3, 2): how each control moves the pose
+    return W @ M @ W.T  # R = W M W^T
 
 
 def landmark_loop(
@@ -158,7 +158,7 @@ def landmark_loop(
 
     Filter: it starts at the true start with covariance :data:`SIG0`, predicts
     with the unicycle model and the process noise
-    :math:`R_k = V M V^\top` (:func:`process_noise_of_odometry`,
+    :math:`R_k = W M W^\top` (:func:`process_noise_of_odometry`,
     :math:`M = \mathrm{diag}(\sigma_V^2, \sigma_\omega^2)`), and updates with every
     used reading in turn, :math:`Q = \mathrm{diag}(\sigma_r^2, \sigma_\phi^2)`.  Its
     R and Q are the simulation's own: the filter is honest about the noise.
