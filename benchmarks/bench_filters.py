@@ -9,8 +9,9 @@ problems in both libraries -- the linear Kalman filter on a 2-D constant-velocit
 tracker, and the EKF and the UKF on a unicycle robot reading range and bearing to
 one landmark -- after checking that both libraries compute the same numbers.
 Each row reports the median, over several rounds, of the mean time of one
-predict + update step; a last row reports ``import kfcourse`` in a fresh
-interpreter.  kfcourse checks every input on every call (finite, shapes, each
+predict + update step, and the range of the kfcourse / filterpy ratio over the
+rounds (on a shared machine the spread says how far to trust the median); a last
+row reports ``import kfcourse`` in a fresh interpreter.  kfcourse checks every input on every call (finite, shapes, each
 covariance symmetric and positive semi-definite); filterpy checks none.
 
 Noise letters differ between the libraries: kfcourse's ``R`` (process) is
@@ -214,8 +215,8 @@ def agree(ours: list, theirs: list) -> bool:
     )
 
 
-def per_step_us(runs: dict[str, Callable], zs: list) -> dict[str, float]:
-    """Median over ROUNDS of the mean µs per step; the libraries' rounds alternate."""
+def per_step_us(runs: dict[str, Callable], zs: list) -> dict[str, list[float]]:
+    """The mean µs per step of each of ROUNDS rounds; the libraries' rounds alternate."""
     times: dict[str, list[float]] = {name: [] for name in runs}
     for run in runs.values():
         run(zs[:50])  # warm up
@@ -224,7 +225,7 @@ def per_step_us(runs: dict[str, Callable], zs: list) -> dict[str, float]:
             t0 = time.perf_counter()
             run(zs)
             times[name].append((time.perf_counter() - t0) / len(zs) * 1e6)
-    return {name: statistics.median(t) for name, t in times.items()}
+    return times
 
 
 def import_seconds() -> float:
@@ -251,26 +252,29 @@ def main() -> None:
     print(f"agree: yes (kfcourse and filterpy give the same mean and covariance at all {STEPS} steps)")
     print(f"numpy {np.__version__}, python {sys.version.split()[0]}; {ROUNDS} rounds of {STEPS} steps\n")
 
-    header = f"{'step':<22} {'kfcourse µs':>12} {'filterpy µs':>12} {'ratio':>7}  {'target':<9} {'met':<4}"
+    header = f"{'step':<22} {'kfcourse µs':>12} {'filterpy µs':>12} {'ratio':>7} {'range':>11}  {'target':<9} met"
     print(header)
     print("-" * len(header))
     verdicts = []
     for name, ours, theirs, zs, target in problems:
-        t = per_step_us({"kfcourse": ours, "filterpy": theirs}, zs)
+        times = per_step_us({"kfcourse": ours, "filterpy": theirs}, zs)
+        t = {lib: statistics.median(rounds) for lib, rounds in times.items()}
         ratio = t["kfcourse"] / t["filterpy"]
+        per_round = [a / b for a, b in zip(times["kfcourse"], times["filterpy"], strict=True)]  # the spread
+        spread = f"{min(per_round):.2f}-{max(per_round):.2f}"
         if target is None:
             want, met = "report", "-"
         else:
             ok = ratio <= target
             want, met = f"<= {target:.1f}", "yes" if ok else "NO"
             verdicts.append((name.split()[0], ok))
-        print(f"{name:<22} {t['kfcourse']:>12.1f} {t['filterpy']:>12.1f} {ratio:>7.2f}  {want:<9} {met:<4}")
+        print(f"{name:<22} {t['kfcourse']:>12.1f} {t['filterpy']:>12.1f} {ratio:>7.2f} {spread:>11}  {want:<9} {met}")
 
     secs = import_seconds()
     ok = secs < IMPORT_TARGET
     verdicts.append(("import", ok))
     want = f"< {IMPORT_TARGET} s"
-    print(f"{'import kfcourse':<22} {secs:>11.3f}s {'':>12} {'':>7}  {want:<9} {'yes' if ok else 'NO':<4}")
+    print(f"{'import kfcourse':<22} {secs:>11.3f}s {'':>12} {'':>7} {'':>11}  {want:<9} {'yes' if ok else 'NO':<4}")
 
     met = [n for n, ok in verdicts if ok]
     missed = [n for n, ok in verdicts if not ok]

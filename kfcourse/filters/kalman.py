@@ -279,8 +279,9 @@ def _predict(mu, Sig, u, F, B, R):
 
 def _update(mu_bar, Sig_bar, z, H, Q):
     """The update equations."""
-    S = innovation_covariance(Sig_bar, H, Q)  # S = H Sig_bar H^T + Q
-    K = gain(Sig_bar.dot(H.T), S)  # K = Sig_bar H^T S^-1
+    Sig_xz = Sig_bar.dot(H.T)  # cross-covariance of state and measurement, Sig_bar H^T
+    S = H.dot(Sig_xz) + Q  # S = H Sig_bar H^T + Q
+    K = gain(Sig_xz, S)  # K = Sig_bar H^T S^-1
     y = z - H.dot(mu_bar)  # innovation y = z - H mu_bar
     return joseph_correct(mu_bar, Sig_bar, y, H, Q, K)
 
