@@ -144,15 +144,15 @@ class FigureRenderer:
     def jpeg(self) -> bytes:
         """The current picture as JPEG bytes (fast; for pictures that change while dragging)."""
         buf = io.BytesIO()
-        self.image().save(buf, format="jpeg", quality=JPEG_QUALITY, subsampling=0)
+        self._render("RGBX").save(buf, format="jpeg", quality=JPEG_QUALITY, subsampling=0)  # RGBX: no copy
         return buf.getvalue()
 
     def image(self) -> Image.Image:
         """The current picture as an RGB :class:`PIL.Image.Image`."""
-        return self._render().convert("RGB")
+        return self._render("RGBA").convert("RGB")
 
-    def _render(self) -> Image.Image:
-        """Draw what changed and return the canvas as an RGBA image sharing the canvas's memory."""
+    def _render(self, mode: str) -> Image.Image:
+        """Draw what changed; the canvas as an image in ``mode`` (RGBA or RGBX) sharing its memory."""
         canvas = self.fig.canvas
         if self._background is None:
             canvas.draw()  # static artists only: animated ones are skipped
@@ -165,4 +165,4 @@ class FigureRenderer:
             if artist.get_visible():
                 self.fig.draw_artist(artist)
         width, height = canvas.get_width_height(physical=True)
-        return Image.frombuffer("RGBA", (width, height), canvas.buffer_rgba(), "raw", "RGBA", 0, 1)
+        return Image.frombuffer(mode, (width, height), canvas.buffer_rgba(), "raw", mode, 0, 1)
