@@ -11,6 +11,7 @@ pixels per CSS pixel, while the page still shows it at the same size.
 
 from __future__ import annotations
 
+import base64
 import io
 
 import numpy as np
@@ -37,10 +38,24 @@ STYLE = {
 
 
 class CourseFigure(Figure):
-    """A Figure that shows itself as a PNG when it is the last value of a notebook cell."""
+    """A Figure that shows itself as a PNG when it is the last value of a notebook cell.
+
+    The notebook gets a PNG with ``PIXEL_DENSITY`` pixels per CSS pixel, shown at the
+    figure's own size (``width`` x ``dpi`` CSS pixels): sharp on a HiDPI screen.
+    """
 
     def _repr_png_(self) -> bytes:
         return FigureRenderer(self).png()
+
+    def _repr_mimebundle_(self, include=None, exclude=None):
+        width, dpi = self.get_figwidth() * self.dpi, self.dpi  # CSS px
+        renderer = FigureRenderer(self)
+        renderer.set_pixel_width(PIXEL_DENSITY * width)
+        try:
+            png = renderer.png()
+        finally:
+            self.set_dpi(dpi)
+        return {"image/png": base64.b64encode(png).decode("ascii")}, {"image/png": {"width": round(width)}}
 
 
 def new_figure(width: float = 8.0, height: float = 3.6, dpi: int = 80, **subplots) -> tuple[Figure, object]:

@@ -136,3 +136,13 @@ def test_animation_needs_frames_and_pictures():
     with pytest.raises(ValueError, match="pictures"):
         demo.animation(pictures=1)
     assert isinstance(demo.controls["play"], widgets.ToggleButton)
+
+
+def test_a_chart_in_a_notebook_is_drawn_for_a_hidpi_screen_at_its_own_size():
+    fig, _, _ = chart(8.0, 3.6)  # 640 x 288 CSS px at 80 dpi
+    data, metadata = fig._repr_mimebundle_()
+    png = picture(base64.b64decode(data["image/png"]))
+    assert metadata["image/png"]["width"] == 640
+    assert png.size == (PIXEL_DENSITY * 640, PIXEL_DENSITY * 288)
+    assert fig.dpi == 80  # the figure itself is left as it was
+    assert picture(fig._repr_png_()).size == (640, 288)
