@@ -98,7 +98,7 @@ INDEX = """<!DOCTYPE html>
 <title>kfcourse: the Kalman filter family, step by step</title>
 <style>
   body {{ font: 16px/1.5 system-ui, sans-serif; max-width: 46em; margin: 2em auto; padding: 0 1em; color: #222; }}
-  li {{ margin: 0.5em 0; }} .kf-lead {{ color: #555; }}
+  ul.kf-chapters {{ list-style: none; padding-left: 0; }} li {{ margin: 0.5em 0; }} .kf-lead {{ color: #555; }}
 </style>
 </head>
 <body>
@@ -107,10 +107,9 @@ INDEX = """<!DOCTYPE html>
 static edition: every chapter executed, each demo shown as a picture of its first frame (and, where it
 has Run/Pause, a short recording of its run). To drag the sliders, open the notebooks in JupyterLab
 (<code>make lab</code>).</p>
-<ol class="kf-chapters" start="0">
+<ul class="kf-chapters">
 {items}
-</ol>
-<p class="kf-lead">Built {built}.</p>
+</ul>
 </body>
 </html>
 """
@@ -264,8 +263,7 @@ def build(out: Path, folder: Path) -> list[dict]:
         print(f"{pages[i]['href']}: {len(client.demos)} demo(s), {time.monotonic() - t0:.1f} s", flush=True)
 
     items = "\n".join(f'<li><a href="{p["href"]}">{html.escape(p["title"])}</a></li>' for p in pages)
-    built = time.strftime("%Y-%m-%d %H:%M UTC", time.gmtime())
-    (out / "index.html").write_text(INDEX.format(items=items, built=built), encoding="utf-8")
+    (out / "index.html").write_text(INDEX.format(items=items), encoding="utf-8")
     (out / "demos.json").write_text(json.dumps({"pages": pages}, indent=2) + "\n", encoding="utf-8")
     return pages
 

@@ -98,7 +98,7 @@ def test_index_links_every_chapter_in_order(context, site_url, site):
     page = context.new_page()
     try:
         page.goto(site_url + "index.html")
-        hrefs = page.eval_on_selector_all("ol.kf-chapters a", "links => links.map(a => a.getAttribute('href'))")
+        hrefs = page.eval_on_selector_all("ul.kf-chapters a", "links => links.map(a => a.getAttribute('href'))")
     finally:
         page.close()
     assert hrefs == [p.stem + ".html" for p in expected_pages()]
