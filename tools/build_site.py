@@ -257,6 +257,7 @@ def build(out: Path, folder: Path) -> list[dict]:
         )
         client.execute()
         nb.metadata.pop("widgets", None)
+        nb.metadata["title"] = pages[i]["title"]  # the page's <title>
         body, _ = exporter.from_notebook_node(nb, resources={"kf_nav": nav(pages, i)})
         (out / pages[i]["href"]).write_text(link_pages(body), encoding="utf-8")
         pages[i]["demos"] = client.demos
