@@ -13,7 +13,7 @@ WORK     ?= my-notebooks
 CH       ?=
 STAMP    := $(VENV)/.kfcourse-installed
 
-.PHONY: lab app restore test lint bench notebooks pins clean
+.PHONY: lab app restore test lint bench notebooks site pins clean
 
 $(STAMP): binder/requirements.txt requirements-dev.txt pyproject.toml
 	$(PYTHON) -m venv $(VENV)
@@ -58,6 +58,11 @@ bench: $(STAMP)
 # Re-execute the notebooks and store the outputs of the NBVAL_CHECK_OUTPUT cells only.
 notebooks: $(STAMP)
 	$(BIN)/python tools/store_outputs.py notebooks/*.ipynb
+
+# The static HTML edition: every chapter executed, each demo as a picture of its first frame
+# (and a short recording of its run where it has Run/Pause). Open site/index.html.
+site: $(STAMP)
+	$(BIN)/python tools/build_site.py --out site
 
 # Re-resolve the pinned environments from the ranges in pyproject.toml.
 pins:

@@ -19,14 +19,18 @@ what moves.  A new demo is then a model, a draw function and a list of controls:
 from __future__ import annotations
 
 import asyncio
+import base64
+import io
 from collections.abc import Callable
 
 import ipywidgets as widgets
 
-from ..plots.style import FigureRenderer
+from ..plots.style import PIXEL_DENSITY, FigureRenderer
 
 FRAME_INTERVAL = 0.08  # s between frames while running: 12.5 pictures a second
 FRAME_GAP = 0.02  # s the kernel always rests between frames, to hear Pause and slider moves
+ANIMATION_INTERVAL_MS = 120  # between the pictures of :meth:`Demo.animation`: a run in a few seconds
+DISPLAY_WIDTH = 950  # CSS px: about the width JupyterLab stretches a demo's picture to beside its side bar
 
 
 class Demo(widgets.VBox):
@@ -63,7 +67,14 @@ class Demo(widgets.VBox):
     renderer : FigureRenderer
         Turns the figure into PNG bytes.
     image : ipywidgets.Image
-        The picture.
+        The picture: a JPEG ``PIXEL_DENSITY * DISPLAY_WIDTH`` pixels wide, so that it stays
+        sharp where it is shown about ``DISPLAY_WIDTH`` CSS pixels wide on a HiDPI screen.
+
+    Notes
+    -----
+    Shown as the last value of a cell, a demo also hands the notebook a PNG of its
+    current (first) frame beside the widget: a page without a kernel (GitHub, nbviewer,
+    nbconvert) shows that picture where JupyterLab shows the live widget.
     """
 
     def __init__(
@@ -89,7 +100,8 @@ class Demo(widgets.VBox):
         for key, (control, method) in bound.items():
             control.add_class(f"kf-control-{key}")
             self._bind(control, method)
-        self.image = widgets.Image(format="png")
+        renderer.set_pixel_width(PIXEL_DENSITY * DISPLAY_WIDTH)
+        self.image = widgets.Image(format="jpeg")
         self.image.add_class("kf-figure")
         cap = widgets.HTML(f"<div style='color:#333;font-size:13px;line-height:1.4'>{caption}</div>")
         cap.add_class("kf-caption")
@@ -102,7 +114,55 @@ class Demo(widgets.VBox):
     def refresh(self, *_) -> None:
         """Update the artists from the model and show the new picture."""
         self._draw()
-        self.image.value = self.renderer.png()
+        self.image.value = self.renderer.jpeg()
+
+    # --- Pictures for pages without a kernel ------------------------------------------------------
+
+    def _repr_mimebundle_(self, **kwargs):
+        """The widget view, plus a PNG of the picture shown now for frontends that cannot show widgets."""
+        data = super()._repr_mimebundle_(**kwargs)
+        data["image/png"] = base64.b64encode(self.renderer.png()).decode("ascii")
+        return data, {"image/png": {"width": DISPLAY_WIDTH}}
+
+    def animation(self, pictures: int = 40, width: int = DISPLAY_WIDTH) -> bytes:
+        """The whole run, first frame to last, as an animated WebP that loops.
+
+        For pages without a kernel: what pressing Run shows.  The demo is left on the
+        frame it was on.
+
+        Parameters
+        ----------
+        pictures : int
+            At most this many frames, evenly spaced over the run (>= 2).
+        width : int
+            Pixels wide.
+
+        Returns
+        -------
+        bytes
+        """
+        if "frame" not in self.controls:
+            raise ValueError("animation needs a demo with frames (Run/Pause)")
+        if pictures < 2:
+            raise ValueError(f"pictures must be at least 2, got {pictures!r}")
+        frame = self.controls["frame"]
+        start, shown = frame.value, []
+        stride = max(1, -(-(frame.max - frame.min) // (pictures - 1)))  # ceil
+        ks = [*range(frame.min, frame.max, stride), frame.max]
+        self.renderer.set_pixel_width(width)
+        try:
+            for k in ks:
+                self._set_frame(k)
+                self._draw()
+                shown.append(self.renderer.image())
+        finally:
+            self.renderer.set_pixel_width(PIXEL_DENSITY * DISPLAY_WIDTH)
+            self._set_frame(start)
+            self.refresh()
+        buf = io.BytesIO()
+        duration = [ANIMATION_INTERVAL_MS] * (len(shown) - 1) + [1500]  # rest on the last frame before looping
+        shown[0].save(buf, format="webp", save_all=True, append_images=shown[1:], duration=duration, loop=0, quality=80)
+        return buf.getvalue()
 
     def _bind(self, control: widgets.Widget, method: Callable | None) -> None:
         if method is None:

@@ -27,7 +27,8 @@ def pixels(png: bytes) -> np.ndarray:
 
 
 def assert_not_stale(demo, what: str) -> None:
-    shown = pixels(demo.image.value)
+    # The picture shown, blitted again and kept lossless (the demo's image holds it as a JPEG).
+    shown = pixels(demo.renderer.png())
     demo.renderer.invalidate()
     full = pixels(demo.renderer.png())
     assert shown.shape == full.shape, what
