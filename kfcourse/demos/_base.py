@@ -252,8 +252,11 @@ class Demo(widgets.VBox):
         self.controls["play"].value = False
 
 
-def slider(cls, description: str, value, min, max, step, readout_format: str = ".2f", **kwargs):
-    """A slider that reports every value while it is dragged."""
+def slider(
+    cls, description: str, value, min, max, step, readout_format: str = ".2f", continuous_update: bool = True, **kwargs
+):
+    """A slider that reports every value while it is dragged, or with ``continuous_update=False``
+    only where it is let go (for a control whose change costs more than a frame)."""
     return cls(
         value=value,
         min=min,
@@ -261,7 +264,7 @@ def slider(cls, description: str, value, min, max, step, readout_format: str = "
         step=step,
         description=description,
         readout_format=readout_format,
-        continuous_update=True,
+        continuous_update=continuous_update,
         style={"description_width": "initial"},
         layout=widgets.Layout(width="340px"),
         **kwargs,

@@ -162,13 +162,13 @@ def landmark_loop(seed: int = 0) -> Demo:
         renderer=renderer,
         draw=draw,
         frames=model.run.t.size,
-        controls={
+        controls={  # each noise change reruns the whole lap (about 0.1 s): once where the slider is let go
             "motion": (
-                slider(widgets.FloatLogSlider, "process noise ×", 1.0, lo, hi, 0.05, ".2g", base=10),
+                slider(widgets.FloatLogSlider, "process noise ×", 1.0, lo, hi, 0.05, ".2g", False, base=10),
                 model.set_motion_noise,
             ),
             "sensor": (
-                slider(widgets.FloatLogSlider, "measurement noise ×", 1.0, lo, hi, 0.05, ".2g", base=10),
+                slider(widgets.FloatLogSlider, "measurement noise ×", 1.0, lo, hi, 0.05, ".2g", False, base=10),
                 model.set_sensor_noise,
             ),
             "dropout": (

@@ -58,6 +58,13 @@ def test_first_frame_is_a_normal_lap_mid_way():
     assert demo.controls["kidnap"].description == "Kidnap"
 
 
+def test_noise_sliders_rerun_the_lap_once_where_they_are_let_go():
+    demo = make()
+    assert demo.controls["motion"].continuous_update is False  # a rerun per dragged pixel would queue up
+    assert demo.controls["sensor"].continuous_update is False
+    assert demo.controls["frame"].continuous_update is True  # stepping only redraws: follows the drag
+
+
 @pytest.mark.parametrize(
     ("key", "value", "attr"),
     [
