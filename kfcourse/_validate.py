@@ -87,6 +87,13 @@ def whole(x, name: str, least: int = 0) -> int:
     return int(x)
 
 
+def flag(x, name: str) -> bool:
+    """A switch: ``True`` or ``False`` (a numpy bool too), not 0, 1 or a string."""
+    if not isinstance(x, bool | np.bool_):
+        raise ValueError(f"{name} must be True or False, got {x!r}")
+    return bool(x)
+
+
 def vector(x, name: str, n: int | None = None) -> np.ndarray:
     """A finite 1-D array (a scalar becomes length 1), of length ``n`` if given."""
     a = finite(x, name)

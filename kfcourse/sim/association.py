@@ -90,8 +90,7 @@ def association_scan(seed: int = 0, leg: bool = False) -> AssociationScan:
     AssociationScan
     """
     seed = v.whole(seed, "seed", 0)
-    if not isinstance(leg, bool | np.bool_):
-        raise ValueError(f"leg must be True or False, got {leg!r}")
+    leg = v.flag(leg, "leg")
     rng = np.random.default_rng(seed)
     Q = np.diag([RANGE_STD, BEARING_STD]) ** 2
     noise = rng.standard_normal((len(SCAN_LANDMARKS) + 1, 2)) * [RANGE_STD, BEARING_STD]  # drawn for the leg too

@@ -85,8 +85,7 @@ def run_ekf(flipped: bool = False, seed: int = 0, landmarks=None) -> EkfRun:
     -------
     EkfRun
     """
-    if not isinstance(flipped, bool | np.bool_):
-        raise ValueError(f"flipped must be True or False, got {flipped!r}")
+    flipped = v.flag(flipped, "flipped")
     seed = v.whole(seed, "seed", 0)
     run = simulate_robot(landmarks=TWO_LANDMARKS if landmarks is None else landmarks, sensor_range=6.0, seed=seed)
     H_of = flipped_bearing_jacobian if flipped else range_bearing_jacobian

@@ -82,12 +82,6 @@ class LoopRun:
         return float(self.inside.mean())
 
 
-def _flag(x, name: str) -> bool:
-    if not isinstance(x, bool | np.bool_):
-        raise ValueError(f"{name} must be True or False, got {x!r}")
-    return bool(x)
-
-
 def _noise_scale(x, name: str) -> float:
     value = v.scalar(x, name)
     if not NOISE_SCALES[0] <= value <= NOISE_SCALES[1]:
@@ -205,7 +199,7 @@ def landmark_loop(
         raise ValueError(f"filter must be one of {FILTERS}, got {filter!r}")
     motion_noise = _noise_scale(motion_noise, "motion_noise")
     sensor_noise = _noise_scale(sensor_noise, "sensor_noise")
-    wrap_bearing = _flag(wrap_bearing, "wrap_bearing")
+    wrap_bearing = v.flag(wrap_bearing, "wrap_bearing")
     gate = None if gate is None else v.positive(gate, "gate", "a distance", "standard deviations")
     laps = v.whole(laps, "laps", 1)
     m = DEFAULT_LANDMARKS if landmarks is None else v.matrix(landmarks, "landmarks", cols=2)
