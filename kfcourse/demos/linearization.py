@@ -5,6 +5,7 @@ from __future__ import annotations
 import ipywidgets as widgets
 import numpy as np
 
+from ..filters.gaussian import gaussian_pdf
 from ..plots import palette
 from ..plots.style import FigureRenderer, fixed_width_ticks, new_figure
 from ._base import Demo, slider
@@ -72,8 +73,36 @@ class LinearizationModel:
         return float(f(self.m)), slope * slope * self.s * self.s  # mean f(m), variance f'(m)^2 s^2
 
 
-def _density(x, mean, var):
-    return np.exp(-0.5 * (x - mean) ** 2 / var) / np.sqrt(2 * np.pi * var)
+def function_panels(width: float, height: float, x_range, width_ratio: float, height_ratio: float):
+    """The four panels of the demos of chapters 7 and 9: the curve f (top left) over the input
+    density (bottom left, same x), the output density sideways on f's own y axis (top right) and
+    a text panel (bottom right).  Both densities are drawn relative to a peak, so their axes
+    never rescale while a slider is dragged.
+
+    Returns
+    -------
+    (fig, ax_f, ax_out, ax_in, ax_txt)
+    """
+    fig, axes = new_figure(
+        width,
+        height,
+        nrows=2,
+        ncols=2,
+        gridspec_kw={"width_ratios": [3, width_ratio], "height_ratios": [3, height_ratio]},
+    )
+    (ax_f, ax_out), (ax_in, ax_txt) = axes
+    ax_in.sharex(ax_f)
+    ax_out.sharey(ax_f)
+    ax_f.set_xlim(*x_range)
+    ax_f.set_ylabel("output y = f(x)")
+    ax_in.set_xlabel("input x")
+    ax_in.set_ylabel("density\n(peak = 1)")
+    ax_out.set_xlabel("density (sampled peak = 1)")
+    ax_in.set_ylim(0.0, 1.15)
+    ax_out.set_xlim(0.0, 1.6)
+    ax_txt.axis("off")
+    fixed_width_ticks(ax_f.yaxis, 5)
+    return fig, ax_f, ax_out, ax_in, ax_txt
 
 
 def linearization(seed: int = 0) -> Demo:
@@ -85,21 +114,7 @@ def linearization(seed: int = 0) -> Demo:
     Demo (an ipywidgets.VBox)
     """
     model = LinearizationModel(seed=seed)
-    fig, axes = new_figure(
-        8.0, 5.4, nrows=2, ncols=2, gridspec_kw={"width_ratios": [3, 1.3], "height_ratios": [3, 1.1]}
-    )
-    (ax_f, ax_out), (ax_in, ax_txt) = axes
-    ax_in.sharex(ax_f)
-    ax_out.sharey(ax_f)
-    ax_f.set_xlim(*X_RANGE)
-    ax_f.set_ylabel("output y = f(x)")
-    ax_in.set_xlabel("input x")
-    ax_in.set_ylabel("density\n(peak = 1)")
-    ax_out.set_xlabel("density (sampled peak = 1)")
-    ax_in.set_ylim(0.0, 1.15)  # both densities are drawn relative to a peak: the axes never rescale while dragging
-    ax_out.set_xlim(0.0, 1.6)
-    ax_txt.axis("off")
-    fixed_width_ticks(ax_f.yaxis, 5)
+    fig, ax_f, ax_out, ax_in, ax_txt = function_panels(8.0, 5.4, X_RANGE, width_ratio=1.3, height_ratio=1.1)
 
     x = np.linspace(*X_RANGE, 400)
     (curve,) = ax_f.plot(x, x, color=palette.INK, lw=1.5, label="f(x)")
@@ -140,7 +155,7 @@ def linearization(seed: int = 0) -> Demo:
         top_out = max(float(dens.max()), 1e-12)  # the sampled peak: both output densities are divided by it
         grid = np.linspace(lo, hi, 600)
         if var_e > 1e-12 * (hi - lo) ** 2:
-            ekf.set_data(np.minimum(_density(grid, mean_e, var_e) / top_out, 2.0), grid)
+            ekf.set_data(np.minimum(gaussian_pdf(grid, mean_e, var_e) / top_out, 2.0), grid)
         else:  # f'(m) = 0: the EKF claims no spread at all, a spike at f(m)
             ekf.set_data([0.0, 0.0, 2.0, 0.0, 0.0], [lo, mean_e, mean_e, mean_e, hi])
         hist.set_data(np.concatenate([[0.0], np.repeat(dens / top_out, 2), [0.0]]), np.repeat(edges, 2))

@@ -7,12 +7,13 @@ import numpy as np
 from matplotlib.collections import LineCollection
 from matplotlib.patches import Polygon
 
+from ..filters.gaussian import gaussian_pdf
 from ..filters.ukf import sigma_points as make_sigma_points
 from ..filters.ukf import unscented_1d
 from ..plots import palette
-from ..plots.style import FigureRenderer, fixed_width_ticks, new_figure
+from ..plots.style import FigureRenderer
 from ._base import Demo, slider
-from .linearization import FUNCTIONS, LinearizationModel, _density
+from .linearization import FUNCTIONS, LinearizationModel, function_panels
 
 N_SAMPLES = 20_000  # fixed standard-normal draws, rescaled by the sliders
 X_RANGE = (-5.0, 5.0)  # the sigma points reach m +- sqrt(1 + lam) s = 2 + 2 * 1.5 at the sliders' extremes
@@ -63,21 +64,7 @@ def sigma_points(seed: int = 0) -> Demo:
     Demo (an ipywidgets.VBox)
     """
     model = SigmaPointsModel(seed=seed)
-    fig, axes = new_figure(
-        8.4, 6.0, nrows=2, ncols=2, gridspec_kw={"width_ratios": [3, 1.4], "height_ratios": [3, 1.3]}
-    )
-    (ax_f, ax_out), (ax_in, ax_txt) = axes
-    ax_in.sharex(ax_f)
-    ax_out.sharey(ax_f)
-    ax_f.set_xlim(*X_RANGE)
-    ax_f.set_ylabel("output y = f(x)")
-    ax_in.set_xlabel("input x")
-    ax_in.set_ylabel("density\n(peak = 1)")
-    ax_out.set_xlabel("density (sampled peak = 1)")
-    ax_in.set_ylim(0.0, 1.15)  # densities drawn relative to a peak: the axes never rescale while dragging
-    ax_out.set_xlim(0.0, 1.6)
-    ax_txt.axis("off")
-    fixed_width_ticks(ax_f.yaxis, 5)
+    fig, ax_f, ax_out, ax_in, ax_txt = function_panels(8.4, 6.0, X_RANGE, width_ratio=1.4, height_ratio=1.3)
 
     x = np.linspace(*X_RANGE, 500)
     (curve,) = ax_f.plot(x, x, color=palette.INK, lw=1.5, label="f(x)")
@@ -114,7 +101,7 @@ def sigma_points(seed: int = 0) -> Demo:
 
     def output_density(line, mean, var, top, lo, hi, grid):
         if var > 1e-12 * (hi - lo) ** 2:
-            line.set_data(np.minimum(_density(grid, mean, var) / top, DENSITY_CAP), grid)
+            line.set_data(np.minimum(gaussian_pdf(grid, mean, var) / top, DENSITY_CAP), grid)
             line.set_marker("None")
         else:  # no spread at all: a short arrow at the mean, all the probability at one value
             line.set_data([0.0, 0.0, ARROW, 0.0, 0.0], [lo, mean, mean, mean, hi])
