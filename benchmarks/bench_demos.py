@@ -7,7 +7,7 @@ Run by hand (not part of the test suite):
 For each demo, every slider is swept back and forth across its range, every
 button pressed, every toggle and choice flipped through its values, and the
 animation frame stepped; each change is timed from the moment the control's
-value is set until the demo's image widget holds the new PNG (observers run
+value is set until the demo's image widget holds the new picture (observers run
 synchronously, so that is the time the kernel is busy).
 Targets: median <= 50 ms, p95 <= 100 ms.  The column "frame ms" is the median
 of the animation frame changes alone: what one picture of Run costs the kernel

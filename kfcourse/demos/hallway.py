@@ -5,7 +5,7 @@ from __future__ import annotations
 import ipywidgets as widgets
 import numpy as np
 from matplotlib.patches import Rectangle
-from matplotlib.ticker import FormatStrFormatter
+from matplotlib.ticker import FormatStrFormatter, MaxNLocator
 
 from ..filters.bayes import bayes_predict, bayes_update
 from ..plots import palette
@@ -131,9 +131,12 @@ def hallway(seed: int = 0) -> Demo:
     renderer = FigureRenderer(fig, dynamic)
 
     def draw() -> None:
-        top = 0.25 * np.ceil(1.15 * float(model.belief.max()) / 0.25)  # in steps of 0.25: few full redraws
+        # The bars fill at most the lower 70 %, the two text blocks the rest; the top moves in steps
+        # of 0.25 (few full redraws), and the ticks stop at 1, as a probability does.
+        top = 0.25 * np.ceil(float(model.belief.max()) / 0.7 / 0.25)
         if ax.get_ylim()[1] != top:
             ax.set_ylim(0, top)
+            ax.set_yticks([t for t in MaxNLocator(6).tick_values(0, top) if t <= 1.0 + 1e-9])
             renderer.invalidate()
         update_belief_bars(bars, model.belief)
         colour = palette.PREDICTION if model.phase == "predicted" else palette.ESTIMATE
