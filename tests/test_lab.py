@@ -5,8 +5,8 @@ original and keeps the student's version.  Then the real `make lab` is started o
 port (in this test environment's own venv, which make is told not to rebuild) and
 checked as a student meets it: the address is printed only once the server answers, it
 holds a token and the server refuses requests without it, it listens on 127.0.0.1 only,
-JupyterLab's news pop-up is off, and saving a notebook (what autosave does) writes the
-working copy, never the tracked notebooks.
+JupyterLab's news pop-up is off, widget state is saved with a notebook by default, and
+saving a notebook (what autosave does) writes the working copy, never the tracked notebooks.
 """
 
 from __future__ import annotations
@@ -306,6 +306,19 @@ def test_lab_news_popup_is_off(lab):
     assert "@jupyterlab/apputils-extension:announcements" in disabled
 
 
+def test_lab_saves_widget_state_with_the_notebook(lab):
+    """A demo run and saved keeps its picture for the next time (tests/browser/test_saved_notebook.py)."""
+    status, body = get(
+        f"http://127.0.0.1:{lab['port']}/lab/api/settings/@jupyter-widgets/jupyterlab-manager:plugin",
+        {"Authorization": f"token {lab['token']}"},
+    )
+    assert status == 200
+    plugin = json.loads(body)
+    # The course's setting is a default (the schema's), which a student's own settings may still change.
+    assert plugin["schema"]["properties"]["saveState"]["default"] is True
+    assert "saveState" not in plugin["settings"]
+
+
 def test_lab_serves_the_working_copy_and_saving_never_touches_the_tracked_notebooks(lab):
     base = f"http://127.0.0.1:{lab['port']}/api/contents"
     auth = {"Authorization": f"token {lab['token']}"}
@@ -330,8 +343,13 @@ def test_lab_serves_the_working_copy_and_saving_never_touches_the_tracked_notebo
 
 
 def test_binder_gets_the_same_jupyterlab_settings():
-    """Binder (and a hub image built with repo2docker) install the page config `make lab` uses."""
-    config = json.loads((course.JUPYTER_CONFIG / "labconfig" / "page_config.json").read_text(encoding="utf-8"))
+    """Binder (and a hub image built with repo2docker) install the lab config files `make lab` uses."""
+    labconfig = course.JUPYTER_CONFIG / "labconfig"
+    config = json.loads((labconfig / "page_config.json").read_text(encoding="utf-8"))
     assert config["disabledExtensions"] == {"@jupyterlab/apputils-extension:announcements": True}
+    defaults = json.loads((labconfig / "default_setting_overrides.json").read_text(encoding="utf-8"))
+    assert defaults == {"@jupyter-widgets/jupyterlab-manager:plugin": {"saveState": True}}
     post = (ROOT / "binder" / "postBuild").read_text(encoding="utf-8")
-    assert "cp binder/jupyter-config/labconfig/page_config.json" in post
+    assert sorted(p.name for p in labconfig.iterdir()) == ["default_setting_overrides.json", "page_config.json"]
+    for path in labconfig.iterdir():
+        assert f"cp binder/jupyter-config/labconfig/{path.name}" in post

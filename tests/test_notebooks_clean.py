@@ -2,7 +2,9 @@
 
 nbval compares a ``# NBVAL_CHECK_OUTPUT`` cell only when the notebook stores its
 output *and* execution count; without them it passes silently.  Every other
-cell must be stored without outputs or counts so nothing stale ships.
+cell must be stored without outputs or counts so nothing stale ships, and no notebook
+stores widget state or a widget view (the course's JupyterLab saves widget state into a
+student's own copy, so a notebook saved from a lab session must not be committed as is).
 """
 
 from __future__ import annotations
@@ -16,6 +18,7 @@ import pytest
 ROOT = Path(__file__).resolve().parents[1]
 NOTEBOOKS = sorted((ROOT / "notebooks").glob("*.ipynb"))
 MARK = "# NBVAL_CHECK_OUTPUT"
+WIDGET_VIEW = "application/vnd.jupyter.widget-view+json"
 EXTRA = {"solutions.ipynb"}  # not a chapter: the exercises' solutions, a section per chapter
 
 
@@ -45,9 +48,18 @@ def test_checked_cells_store_output_and_count(path):
 
 
 @pytest.mark.parametrize("path", NOTEBOOKS, ids=lambda p: p.stem)
-def test_other_cells_are_clean(path):
+def test_no_widget_state_is_stored(path):
+    """Widget state belongs in a student's saved copy (JupyterLab saves it there), never in the course's notebooks."""
     nb, cs = cells(path)
-    assert "widgets" not in nb.get("metadata", {}), "stale widget state stored"
+    assert "widgets" not in nb.get("metadata", {}), "widget state stored in metadata.widgets"
+    for c in cs:
+        for out in c.get("outputs", []):
+            assert WIDGET_VIEW not in out.get("data", {}), f"stored widget view:\n{''.join(c['source'])}"
+
+
+@pytest.mark.parametrize("path", NOTEBOOKS, ids=lambda p: p.stem)
+def test_other_cells_are_clean(path):
+    _, cs = cells(path)
     for c in cs:
         if c["cell_type"] != "code" or MARK in "".join(c["source"]):
             continue

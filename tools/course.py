@@ -15,7 +15,9 @@ tracked notebook and never writes it.
 
 Both servers listen on 127.0.0.1 only, keep token authentication on (a new random token each
 start), and print the address to open, with its token, once the server answers.  JupyterLab
-starts without its news pop-up: ``binder/jupyter-config`` disables the announcements plugin.
+takes the course's settings from ``binder/jupyter-config/labconfig``: no news pop-up (the
+announcements plugin is disabled), and widget state saved with a notebook, so a demo run and
+saved still shows its picture when the notebook is reopened with a new kernel.
 """
 
 from __future__ import annotations
@@ -38,7 +40,9 @@ ROOT = Path(__file__).resolve().parents[1]
 ORIGINALS = ROOT / "notebooks"
 WORK = ROOT / "my-notebooks"
 # Jupyter configuration the course adds to the user's own: its labconfig/page_config.json
-# turns JupyterLab's announcements plugin (the news and update pop-ups) off.
+# turns JupyterLab's announcements plugin (the news and update pop-ups) off, and
+# labconfig/default_setting_overrides.json makes the widget manager save widget state
+# (a default: a student can still switch it off under Settings).
 JUPYTER_CONFIG = ROOT / "binder" / "jupyter-config"
 START_TIMEOUT_S = 120
 STOP_TIMEOUT_S = 15
