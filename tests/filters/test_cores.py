@@ -1,4 +1,4 @@
-"""The fast paths behind the models and filters give the public functions' results, bit for bit."""
+"""The unchecked cores behind the models and filters give the public functions' results, bit for bit."""
 
 from __future__ import annotations
 
@@ -8,6 +8,7 @@ import numpy as np
 import pytest
 
 import kfcourse as kf
+from kfcourse import models
 
 
 def _edge_angles() -> np.ndarray:
@@ -49,3 +50,29 @@ def test_wrap_angle_of_other_numbers_is_a_float_as_before(a):
 def test_wrap_angle_still_refuses_a_number_that_is_not_finite(bad):
     with pytest.raises(ValueError, match=r"^a must be finite \(no NaN or inf\)"):
         kf.wrap_angle(bad)
+
+
+def test_model_cores_give_the_public_results():
+    rng = np.random.default_rng(2)
+    poses = rng.uniform(-4, 4, size=(7, 3))
+    poses[:, 2] = rng.uniform(-math.pi, math.pi, 7)
+    u, dt, m = np.array([0.6, -1.3]), 0.2, np.array([2.0, -1.0])
+    for s in (poses, poses[3]):
+        assert np.array_equal(models._unicycle(s, u, dt), kf.unicycle(s, u, dt))
+        assert np.array_equal(models._range_bearing(s, m), kf.range_bearing(s, m))
+    assert np.array_equal(models._unicycle_jacobian(poses[0], u, dt), kf.unicycle_jacobian(poses[0], u, dt))
+    assert np.array_equal(
+        models._unicycle_control_jacobian(poses[0], u, dt), kf.unicycle_control_jacobian(poses[0], u, dt)
+    )
+    assert np.array_equal(models._range_bearing_jacobian(poses[0], m), kf.range_bearing_jacobian(poses[0], m))
+    assert np.array_equal(models._pose_residual(poses, poses[1]), models.pose_residual(poses, poses[1]))
+    assert np.array_equal(models._pose_mean(poses, np.full(7, 1 / 7)), models.pose_mean(poses, np.full(7, 1 / 7)))
+
+
+def test_a_stack_of_poses_moves_into_a_c_ordered_stack():
+    # Sigma points come as a Fortran-ordered stack; the weighted sums over the moved stack round as they did
+    # only if it is C-ordered, whatever the order of the points.
+    chi = np.asfortranarray(np.random.default_rng(3).normal(size=(7, 3)))
+    moved = models._unicycle(chi, np.array([0.5, 0.3]), 0.2)
+    assert moved.flags["C_CONTIGUOUS"]
+    assert models._range_bearing(chi, np.array([1.0, 1.0])).flags["C_CONTIGUOUS"]
