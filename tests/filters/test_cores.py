@@ -9,6 +9,8 @@ import pytest
 
 import kfcourse as kf
 from kfcourse import models
+from kfcourse.filters import ekf, ukf
+from kfcourse.filters.linalg import gain
 
 
 def _edge_angles() -> np.ndarray:
@@ -76,3 +78,42 @@ def test_a_stack_of_poses_moves_into_a_c_ordered_stack():
     moved = models._unicycle(chi, np.array([0.5, 0.3]), 0.2)
     assert moved.flags["C_CONTIGUOUS"]
     assert models._range_bearing(chi, np.array([1.0, 1.0])).flags["C_CONTIGUOUS"]
+
+
+def test_filter_cores_give_the_public_results():
+    dt, m = 0.2, np.array([2.0, 1.0])
+    mu, Sig, u = np.array([0.1, -0.2, 3.0]), np.diag([0.02, 0.03, 0.01]), np.array([0.5, 0.4])
+    R, Q, z = np.diag([1e-3, 2e-3, 5e-4]), np.diag([0.01, 0.0009]), np.array([2.3, -2.9])
+
+    def g(x, c):
+        return kf.unicycle(x, c, dt)
+
+    def G(x, c):
+        return kf.unicycle_jacobian(x, c, dt)
+
+    def h(x):
+        return kf.range_bearing(x, m)
+
+    def H(x):
+        return kf.range_bearing_jacobian(x, m)
+
+    public = kf.ekf_predict(mu, Sig, u, g, G, R)
+    core = ekf._ekf_predict(mu, Sig, u, g, G, R)
+    assert all(np.array_equal(a, b) for a, b in zip(public, core, strict=True))
+    public = kf.ekf_update(mu, Sig, z, h, H, Q, residual=models.range_bearing_residual)
+    y, Ht, S = ekf._ekf_innovation(mu, Sig, z, h, H, Q, models._range_bearing_residual)
+    assert abs(y[1]) < 1.0  # the bearing innovation was wrapped (z is 2 pi away from h's bearing)
+    core = ekf._ekf_correct(mu, Sig, y, Ht, S, Q)
+    assert all(np.array_equal(a, b) for a, b in zip(public, core, strict=True))
+
+    public = kf.ukf_predict(mu, Sig, u, g, R, 0.0, models.pose_residual, models.pose_mean, vectorized=True)
+    core = ukf._ukf_predict(mu, Sig, lambda chi: g(chi, u), R, 0.0, 0.0, models._pose_residual, models._pose_mean)
+    assert all(np.array_equal(a, b) for a, b in zip(public, core, strict=True))
+    hooks = (models.range_bearing_residual, models.range_bearing_mean, models.pose_residual)
+    public = kf.ukf_update(mu, Sig, z, h, Q, 0.0, *hooks, vectorized=True)
+    z_hat, S, Sig_xz = ukf._ukf_moments(
+        mu, Sig, h, Q, 0.0, 0.0, models._range_bearing_residual, models._range_bearing_mean, models._pose_residual
+    )
+    K = gain(Sig_xz, S)
+    core = ukf._ukf_correct(mu, Sig, models._range_bearing_residual(z, z_hat), S, K)
+    assert all(np.array_equal(a, b) for a, b in zip(public, core, strict=True))
