@@ -15,7 +15,7 @@ DROPOUT = (40, 70)  # steps k with t0 <= k < t1 without readings when dropout is
 FIRST_FRAME = 60  # the step shown first: on the top straight, two landmarks in view
 NOISE_RANGE = (-1.0, 1.0)  # log10 of the noise scales the sliders reach: 0.1x to 10x
 FILTERS = ("EKF", "UKF")  # the choices shown; the run takes them in lower case
-IMAGE_WIDTH = "680px"  # the picture's largest width on the page
+IMAGE_WIDTH = 680  # CSS px: the picture's largest width on the page (and it is rendered for that width)
 GATE = 4.0  # the filter rejects a reading more than 4 standard deviations from its prediction (chapter 8)
 
 
@@ -194,9 +194,10 @@ def landmark_loop(seed: int = 0) -> Demo:
             "kidnap": (kidnap, model.toggle_kidnap),
         },
         layout=[readout, ["play", "frame"], ["motion", "sensor"], ["dropout", "kidnap"], "filter"],
+        display_width=IMAGE_WIDTH,
     )
     # The map with its strips is taller than wide: at the notebook's full width the controls would
     # fall below the screen, so the picture stops growing at IMAGE_WIDTH.
     demo.image.layout.width = "100%"
-    demo.image.layout.max_width = IMAGE_WIDTH
+    demo.image.layout.max_width = f"{IMAGE_WIDTH}px"
     return demo
