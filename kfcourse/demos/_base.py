@@ -59,8 +59,9 @@ class Demo(widgets.VBox):
         Number of animation frames.  Adds the controls ``play`` (Run/Pause) and
         ``frame`` (a slider to scrub); they set ``model.frame``.
     display_width : int
-        CSS pixels the picture is shown at, at most (the demo limits its
-        picture's width on the page if it is narrower than ``DISPLAY_WIDTH``).
+        CSS pixels the picture is shown at, at most: ``DISPLAY_WIDTH`` unless the
+        demo keeps its picture narrower (with the image's layout).  The picture
+        is rendered ``PIXEL_DENSITY`` times as many pixels wide.
 
     Attributes
     ----------

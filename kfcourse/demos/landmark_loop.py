@@ -162,7 +162,7 @@ def landmark_loop(seed: int = 0) -> Demo:
         renderer=renderer,
         draw=draw,
         frames=model.run.t.size,
-        controls={  # each noise change reruns the whole lap (about 0.1 s): once where the slider is let go
+        controls={  # each noise change reruns the whole lap (30 to 60 ms): once where the slider is let go
             "motion": (
                 slider(widgets.FloatLogSlider, "process noise ×", 1.0, lo, hi, 0.05, ".2g", False, base=10),
                 model.set_motion_noise,
