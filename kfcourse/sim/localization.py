@@ -285,7 +285,7 @@ def landmark_loop(
         for j in np.flatnonzero(seen[k]):  # one landmark at a time: sequential updates
             h = lambda x, mj=m[j]: _range_bearing(x, mj)  # noqa: E731
             H = lambda x, mj=m[j]: _range_bearing_jacobian(x, mj)  # noqa: E731
-            if filter == "ekf" or gate is not None:  # the EKF's innovation, H and S; the gate uses them for both
+            if filter == "ekf" or gate is not None:  # innovation, H and S: for the EKF's update and either's gate
                 y, Hj, S = _ekf_innovation(mu, Sig, z[k, j], h, H, Q, z_residual)
             if gate is not None and _mahalanobis(y, S) > gate:
                 continue  # outside the validation gate: rejected
