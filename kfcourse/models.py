@@ -43,6 +43,8 @@ def wrap_angle(a):
     -------
     float or ndarray, same shape
     """
+    if isinstance(a, float | int | np.floating | np.integer) and math.isfinite(a):
+        return _wrap_number(float(a))  # one number: the same formula with the math module, far cheaper
     a = v.finite(a, "a")
     # a - 2 pi k with k chosen for (-pi, pi]; angles already in range are returned unchanged.
     # np.mod keeps huge angles in range (a - 2 pi ceil(...) did not beyond ~1e16), and it
@@ -50,6 +52,23 @@ def wrap_angle(a):
     out = np.where((a > -np.pi) & (a <= np.pi), a, np.pi - np.mod(np.pi - a, 2.0 * np.pi))
     out = np.where(out <= -np.pi, np.pi, out)
     return float(out) if out.ndim == 0 else out
+
+
+def _wrap_number(a: float) -> float:
+    """:func:`wrap_angle` of one finite float; Python's ``%`` is ``np.mod`` for floats, bit for bit."""
+    if -math.pi < a <= math.pi:
+        return a  # already in range: unchanged
+    a = math.pi - (math.pi - a) % (2.0 * math.pi)  # a - 2 pi k, in [-pi, pi]
+    return math.pi if a <= -math.pi else a  # the mod rounded up to 2 pi: that end maps to pi
+
+
+def _wrap(a):
+    """:func:`wrap_angle` of a checked number or float array; an array already in range comes back itself."""
+    if np.ndim(a) == 0:
+        return _wrap_number(float(a))
+    if ((a > -np.pi) & (a <= np.pi)).all():
+        return a  # the common case: nothing to wrap
+    return wrap_angle(a)
 
 
 def numeric_jacobian(f: Callable, x, eps: float = 1e-6, residual: Callable | None = None) -> np.ndarray:
@@ -117,6 +136,12 @@ def constant_velocity(dt: float, dim: int = 1) -> tuple[np.ndarray, np.ndarray]:
     return F, H
 
 
+# Each model below checks its inputs and calls its core, the function of the same name with a leading
+# underscore.  A core takes arrays that are already checked (a pose (3,) or a stack (N, 3) of float, a
+# control (2,), dt > 0, a landmark (2,) away from the pose) and checks nothing, so that a run engine that
+# checked its inputs once can call it on every step.
+
+
 def _rows(x, name: str, n: int) -> np.ndarray:
     """A vector (n,) or a stack of them (N, n), one a row."""
     a = v.finite(x, name)
@@ -127,6 +152,13 @@ def _rows(x, name: str, n: int) -> np.ndarray:
 
 def _pose_control(state, u, dt):
     return _rows(state, "state", 3), v.vector(u, "u", 2), v.positive(dt, "dt", "a time step", "s")
+
+
+def _one_pose(s: np.ndarray) -> np.ndarray:
+    """A checked state that must be one pose (3,), not a stack: a Jacobian is taken at one point."""
+    if s.ndim != 1:
+        raise ValueError(f"state must have shape (3,), got {s.shape}")
+    return s
 
 
 def unicycle(state, u, dt) -> np.ndarray:
@@ -158,11 +190,20 @@ def unicycle(state, u, dt) -> np.ndarray:
     ndarray, shape (3,) or (N, 3)
         Next pose, heading wrapped to (-pi, pi].
     """
-    s, (V, w), dt = _pose_control(state, u, dt)
+    return _unicycle(*_pose_control(state, u, dt))
+
+
+def _unicycle(s, u, dt):
+    """:func:`unicycle` of a checked pose (3,) or stack (N, 3), control (2,) and time step."""
     x, y, th = s[..., 0], s[..., 1], s[..., 2]
+    V, w = u
     half = 0.5 * w * dt
     d = V * dt * np.sinc(half / np.pi)  # chord length: V dt sin(half)/half
-    return np.stack([x + d * np.cos(th + half), y + d * np.sin(th + half), wrap_angle(th + w * dt)], axis=-1)
+    out = np.empty(s.shape)  # C order whatever the input's: the last bits of sums over its rows depend on it
+    out[..., 0] = x + d * np.cos(th + half)  # x' = x + d cos(theta + omega dt/2)
+    out[..., 1] = y + d * np.sin(th + half)  # y' = y + d sin(theta + omega dt/2)
+    out[..., 2] = _wrap(th + w * dt)  # theta' = theta + omega dt, wrapped
+    return out
 
 
 def unicycle_jacobian(state, u, dt) -> np.ndarray:
@@ -186,13 +227,17 @@ def unicycle_jacobian(state, u, dt) -> np.ndarray:
     -------
     ndarray, shape (3, 3)
     """
-    s, (V, w), dt = _pose_control(state, u, dt)
-    if s.ndim != 1:
-        raise ValueError(f"state must have shape (3,), got {s.shape}")
-    th = s[2]
+    s, u, dt = _pose_control(state, u, dt)
+    return _unicycle_jacobian(_one_pose(s), u, dt)
+
+
+def _unicycle_jacobian(s, u, dt):
+    """:func:`unicycle_jacobian` of a checked pose (3,), control (2,) and time step."""
+    V, w = u
     half = 0.5 * w * dt
-    d = V * dt * np.sinc(half / np.pi)
-    return np.array([[1.0, 0.0, -d * math.sin(th + half)], [0.0, 1.0, d * math.cos(th + half)], [0.0, 0.0, 1.0]])
+    d = V * dt * np.sinc(half / np.pi)  # chord length
+    phi = s[2] + half  # heading of the chord
+    return np.array([[1.0, 0.0, -d * math.sin(phi)], [0.0, 1.0, d * math.cos(phi)], [0.0, 0.0, 1.0]])
 
 
 def unicycle_control_jacobian(state, u, dt) -> np.ndarray:
@@ -218,9 +263,13 @@ def unicycle_control_jacobian(state, u, dt) -> np.ndarray:
     -------
     ndarray, shape (3, 2)
     """
-    s_, (V, w), dt = _pose_control(state, u, dt)
-    if s_.ndim != 1:
-        raise ValueError(f"state must have shape (3,), got {s_.shape}")
+    s, u, dt = _pose_control(state, u, dt)
+    return _unicycle_control_jacobian(_one_pose(s), u, dt)
+
+
+def _unicycle_control_jacobian(s_, u, dt):
+    """:func:`unicycle_control_jacobian` of a checked pose (3,), control (2,) and time step."""
+    V, w = u
     h = 0.5 * w * dt
     s = float(np.sinc(h / np.pi))  # sin(h) / h
     ds = (math.cos(h) - s) / h if abs(h) > 1e-3 else -h / 3  # ds/dh; the series near 0 avoids 0/0
@@ -235,15 +284,19 @@ def unicycle_control_jacobian(state, u, dt) -> np.ndarray:
     )
 
 
-def _offset(state, landmark):
-    """Pose(s) and the landmark's offset from them: (s, dx, dy, q), q the squared distance."""
+def _offset(s, m):
+    """The landmark's offset from the pose(s) and its squared length: (dx, dy, q)."""
+    dx, dy = m[0] - s[..., 0], m[1] - s[..., 1]
+    return dx, dy, dx * dx + dy * dy  # q = dx^2 + dy^2
+
+
+def _pose_landmark(state, landmark):
+    """Checked pose(s) and landmark, the landmark away from every pose."""
     s = _rows(state, "state", 3)
     m = v.vector(landmark, "landmark", 2)
-    dx, dy = m[0] - s[..., 0], m[1] - s[..., 1]
-    q = dx * dx + dy * dy  # squared distance
-    if np.any(q == 0.0):
+    if np.any(_offset(s, m)[2] == 0.0):
         raise ValueError("landmark must not sit exactly at the robot's position (bearing undefined)")
-    return s, dx, dy, q
+    return s, m
 
 
 def range_bearing(state, landmark) -> np.ndarray:
@@ -266,8 +319,16 @@ def range_bearing(state, landmark) -> np.ndarray:
     ndarray, shape (2,) or (N, 2)
         ``[r, phi]``, bearing wrapped to (-pi, pi].
     """
-    s, dx, dy, q = _offset(state, landmark)
-    return np.stack([np.sqrt(q), wrap_angle(np.arctan2(dy, dx) - s[..., 2])], axis=-1)
+    return _range_bearing(*_pose_landmark(state, landmark))
+
+
+def _range_bearing(s, m):
+    """:func:`range_bearing` of a checked pose (3,) or stack (N, 3) and landmark (2,)."""
+    dx, dy, q = _offset(s, m)
+    out = np.empty((*s.shape[:-1], 2))
+    out[..., 0] = np.sqrt(q)  # r = sqrt(q)
+    out[..., 1] = _wrap(np.arctan2(dy, dx) - s[..., 2])  # phi = atan2(dy, dx) - theta, wrapped
+    return out
 
 
 def range_bearing_jacobian(state, landmark) -> np.ndarray:
@@ -284,16 +345,21 @@ def range_bearing_jacobian(state, landmark) -> np.ndarray:
     -------
     ndarray, shape (2, 3)
     """
-    s, dx, dy, q = _offset(state, landmark)
-    if s.ndim != 1:
-        raise ValueError(f"state must have shape (3,), got {s.shape}")
+    s, m = _pose_landmark(state, landmark)
+    return _range_bearing_jacobian(_one_pose(s), m)
+
+
+def _range_bearing_jacobian(s, m):
+    """:func:`range_bearing_jacobian` of a checked pose (3,) and landmark (2,)."""
+    dx, dy, q = _offset(s, m)
     r = math.sqrt(q)
     return np.array([[-dx / r, -dy / r, 0.0], [dy / q, -dx / q, -1.0]])
 
 
-def _angle_residual(a, b, index: int, n: int, name: str) -> np.ndarray:
-    d = _rows(a, f"{name} a", n) - _rows(b, f"{name} b", n)  # rows of a minus b (either may be a stack)
-    d[..., index] = wrap_angle(d[..., index])
+def _angle_residual(a, b, index: int) -> np.ndarray:
+    """Rows of ``a`` minus ``b`` (either may be a stack) for checked arrays, the angle at ``index`` wrapped."""
+    d = a - b
+    d[..., index] = _wrap(d[..., index])
     return d
 
 
@@ -307,7 +373,12 @@ def pose_residual(a, b) -> np.ndarray:
     -------
     ndarray, shape (3,)
     """
-    return _angle_residual(a, b, 2, 3, "pose_residual")
+    return _pose_residual(_rows(a, "pose_residual a", 3), _rows(b, "pose_residual b", 3))
+
+
+def _pose_residual(a, b):
+    """:func:`pose_residual` of checked poses (3,) or stacks (N, 3)."""
+    return _angle_residual(a, b, 2)
 
 
 def range_bearing_residual(a, b) -> np.ndarray:
@@ -320,12 +391,21 @@ def range_bearing_residual(a, b) -> np.ndarray:
     -------
     ndarray, shape (2,)
     """
-    return _angle_residual(a, b, 1, 2, "range_bearing_residual")
+    return _range_bearing_residual(_rows(a, "range_bearing_residual a", 2), _rows(b, "range_bearing_residual b", 2))
 
 
-def _mean_with_angle(points, weights, index: int) -> np.ndarray:
+def _range_bearing_residual(a, b):
+    """:func:`range_bearing_residual` of checked readings (2,) or stacks (N, 2)."""
+    return _angle_residual(a, b, 1)
+
+
+def _points_weights(points, weights) -> tuple[np.ndarray, np.ndarray]:
     pts = v.matrix(points, "points")
-    w = v.vector(weights, "weights", pts.shape[0])
+    return pts, v.vector(weights, "weights", pts.shape[0])
+
+
+def _mean_with_angle(pts, w, index: int) -> np.ndarray:
+    """Weighted mean of checked rows ``pts`` (N, k) with weights ``w`` (N,), the angle at ``index`` on the circle."""
     mean = w @ pts
     ang = pts[:, index]
     mean[index] = math.atan2(w @ np.sin(ang), w @ np.cos(ang))  # circular mean
@@ -341,7 +421,12 @@ def pose_mean(points, weights) -> np.ndarray:
     -------
     ndarray, shape (3,)
     """
-    return _mean_with_angle(points, weights, 2)
+    return _pose_mean(*_points_weights(points, weights))
+
+
+def _pose_mean(pts, w):
+    """:func:`pose_mean` of checked poses (N, 3) and weights (N,)."""
+    return _mean_with_angle(pts, w, 2)
 
 
 def range_bearing_mean(points, weights) -> np.ndarray:
@@ -353,4 +438,9 @@ def range_bearing_mean(points, weights) -> np.ndarray:
     -------
     ndarray, shape (2,)
     """
-    return _mean_with_angle(points, weights, 1)
+    return _range_bearing_mean(*_points_weights(points, weights))
+
+
+def _range_bearing_mean(pts, w):
+    """:func:`range_bearing_mean` of checked readings (N, 2) and weights (N,)."""
+    return _mean_with_angle(pts, w, 1)

@@ -58,6 +58,10 @@ class Demo(widgets.VBox):
     frames : int, optional
         Number of animation frames.  Adds the controls ``play`` (Run/Pause) and
         ``frame`` (a slider to scrub); they set ``model.frame``.
+    display_width : int
+        CSS pixels the picture is shown at, at most: ``DISPLAY_WIDTH`` unless the
+        demo keeps its picture narrower (with the image's layout).  The picture
+        is rendered ``PIXEL_DENSITY`` times as many pixels wide.
 
     Attributes
     ----------
@@ -67,8 +71,10 @@ class Demo(widgets.VBox):
     renderer : FigureRenderer
         Turns the figure into PNG bytes.
     image : ipywidgets.Image
-        The picture: a JPEG ``PIXEL_DENSITY * DISPLAY_WIDTH`` pixels wide, so that it stays
-        sharp where it is shown about ``DISPLAY_WIDTH`` CSS pixels wide on a HiDPI screen.
+        The picture: a JPEG ``PIXEL_DENSITY * display_width`` pixels wide, so that it stays
+        sharp where it is shown about ``display_width`` CSS pixels wide on a HiDPI screen.
+    display_width : int
+        CSS pixels the picture is shown at.
 
     Notes
     -----
@@ -88,6 +94,7 @@ class Demo(widgets.VBox):
         controls: dict,
         layout: list | None = None,
         frames: int | None = None,
+        display_width: int = DISPLAY_WIDTH,
     ):
         self.model = model
         self.renderer = renderer
@@ -100,7 +107,8 @@ class Demo(widgets.VBox):
         for key, (control, method) in bound.items():
             control.add_class(f"kf-control-{key}")
             self._bind(control, method)
-        renderer.set_pixel_width(PIXEL_DENSITY * DISPLAY_WIDTH)
+        self.display_width = display_width
+        renderer.set_pixel_width(PIXEL_DENSITY * display_width)
         self.image = widgets.Image(format="jpeg")
         self.image.add_class("kf-figure")
         cap = widgets.HTML(f"<div style='color:#333;font-size:13px;line-height:1.4'>{caption}</div>")
@@ -122,7 +130,7 @@ class Demo(widgets.VBox):
         """The widget view, plus a PNG of the picture shown now for frontends that cannot show widgets."""
         data = super()._repr_mimebundle_(**kwargs)
         data["image/png"] = base64.b64encode(self.renderer.png()).decode("ascii")
-        return data, {"image/png": {"width": DISPLAY_WIDTH}}
+        return data, {"image/png": {"width": self.display_width}}
 
     def animation(self, pictures: int = 40, width: int = DISPLAY_WIDTH) -> bytes:
         """The whole run, first frame to last, as an animated WebP that loops.
@@ -156,7 +164,7 @@ class Demo(widgets.VBox):
                 self._draw()
                 shown.append(self.renderer.image())
         finally:
-            self.renderer.set_pixel_width(PIXEL_DENSITY * DISPLAY_WIDTH)
+            self.renderer.set_pixel_width(PIXEL_DENSITY * self.display_width)
             self._set_frame(start)
             self.refresh()
         buf = io.BytesIO()

@@ -15,7 +15,7 @@ DROPOUT = (40, 70)  # steps k with t0 <= k < t1 without readings when dropout is
 FIRST_FRAME = 60  # the step shown first: on the top straight, two landmarks in view
 NOISE_RANGE = (-1.0, 1.0)  # log10 of the noise scales the sliders reach: 0.1x to 10x
 FILTERS = ("EKF", "UKF")  # the choices shown; the run takes them in lower case
-IMAGE_WIDTH = "680px"  # the picture's largest width on the page
+IMAGE_WIDTH = 680  # CSS px: the picture's largest width on the page (and it is rendered for that width)
 GATE = 4.0  # the filter rejects a reading more than 4 standard deviations from its prediction (chapter 8)
 
 
@@ -141,7 +141,7 @@ def landmark_loop(seed: int = 0) -> Demo:
     def draw() -> None:
         update_loop_map(view, model.run, model.frame)
         if update_error_strips(strips, model.run, model.frame):
-            renderer.invalidate()  # new y limits: the ticks in the background change
+            renderer.invalidate(*strips.axes)  # new y limits: the strips' ticks in the background change
         readout.value = _readout(model)
         kidnap.description = "Undo kidnap" if model.kidnap is not None else "Kidnap"
 
@@ -162,7 +162,7 @@ def landmark_loop(seed: int = 0) -> Demo:
         renderer=renderer,
         draw=draw,
         frames=model.run.t.size,
-        controls={  # each noise change reruns the whole lap (about 0.1 s): once where the slider is let go
+        controls={  # each noise change reruns the whole lap (30 to 60 ms): once where the slider is let go
             "motion": (
                 slider(widgets.FloatLogSlider, "process noise ×", 1.0, lo, hi, 0.05, ".2g", False, base=10),
                 model.set_motion_noise,
@@ -194,9 +194,10 @@ def landmark_loop(seed: int = 0) -> Demo:
             "kidnap": (kidnap, model.toggle_kidnap),
         },
         layout=[readout, ["play", "frame"], ["motion", "sensor"], ["dropout", "kidnap"], "filter"],
+        display_width=IMAGE_WIDTH,
     )
     # The map with its strips is taller than wide: at the notebook's full width the controls would
     # fall below the screen, so the picture stops growing at IMAGE_WIDTH.
     demo.image.layout.width = "100%"
-    demo.image.layout.max_width = IMAGE_WIDTH
+    demo.image.layout.max_width = f"{IMAGE_WIDTH}px"
     return demo

@@ -34,6 +34,11 @@ def mahalanobis(nu, S) -> float:
     """
     nu = v.vector(nu, "nu")
     S = v.covariance(S, "S", nu.size)
+    return _mahalanobis(nu, S)
+
+
+def _mahalanobis(nu, S) -> float:
+    """:func:`mahalanobis` of a checked innovation (k,) and its covariance (k, k)."""
     try:
         m2 = float(nu @ np.linalg.solve(S, nu))  # nu^T S^-1 nu
     except np.linalg.LinAlgError:

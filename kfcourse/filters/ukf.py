@@ -2,6 +2,12 @@
 
 Introduced in chapter 9: "it is easier to approximate a distribution than a
 function".  Sigma points use the lower Cholesky factor of ``(n + lam) Sig``.
+
+The public functions check their inputs and the models' results, then call the
+private cores, which take checked arrays and models (and hooks) that take every
+sigma point at once, one a row, and are trusted to return finite arrays of the
+right shape (a run engine that checked its inputs once calls the cores on every
+step).
 """
 
 from __future__ import annotations
@@ -71,23 +77,6 @@ def _sigma_points(mu, Sig, lam, beta=0.0):
     return chi, wm, wc
 
 
-def _differences(points, centre, residual, vectorized):
-    """Rows of ``points`` minus ``centre``, through the residual hook if there is one."""
-    if residual is None:
-        return points - centre
-    if vectorized:
-        return v.matrix(residual(points, centre), "the result of residual", *points.shape)
-    return np.array([residual(p, centre) for p in points], dtype=float)
-
-
-def _recombine(Y, wm, wc, residual, mean, vectorized=False):
-    """Weighted mean and covariance of transformed points (rows of Y)."""
-    y_mean = wm @ Y if mean is None else np.asarray(mean(Y, wm), dtype=float)  # sum w_i Y_i
-    dY = _differences(Y, y_mean, residual, vectorized)
-    cov = (wc[:, None] * dY).T @ dY  # sum w_i (Y_i - y)(Y_i - y)^T
-    return y_mean, symmetric(cov), dY
-
-
 def _push(f, chi, name, k=None, vectorized=False):
     """f at every sigma point: one call per point, or one call on all rows at once."""
     if vectorized:
@@ -96,6 +85,32 @@ def _push(f, chi, name, k=None, vectorized=False):
     if k is None and len({y.size for y in Y}) != 1:
         raise ValueError(f"{name} must return vectors of one length")
     return np.array(Y)  # rows checked to be equal-length vectors: cheaper than vstack
+
+
+def _on_points(f, name, k, vectorized):
+    """The model as the cores take it: on every sigma point (a row of chi) at once, its result checked."""
+    return lambda chi: _push(f, chi, name, k, vectorized)
+
+
+def _differences(points, centre, residual, vectorized):
+    """Rows of ``points`` minus ``centre`` through the residual hook, its result checked."""
+    if vectorized:
+        return v.matrix(residual(points, centre), "the result of residual", *points.shape)
+    return np.array([residual(p, centre) for p in points], dtype=float)
+
+
+def _on_rows(residual, vectorized):
+    """The residual hook as the cores take it: on a stack of rows against one centre, its result checked
+    (one call per row unless ``vectorized``); no hook stays None."""
+    return None if residual is None else lambda points, centre: _differences(points, centre, residual, vectorized)
+
+
+def _recombine(Y, wm, wc, residual, mean):
+    """Weighted mean and covariance of transformed points (rows of Y); ``residual`` takes the stack."""
+    y_mean = wm @ Y if mean is None else np.asarray(mean(Y, wm), dtype=float)  # sum w_i Y_i
+    dY = Y - y_mean if residual is None else residual(Y, y_mean)  # Y_i - y
+    cov = (wc[:, None] * dY).T @ dY  # sum w_i (Y_i - y)(Y_i - y)^T
+    return y_mean, symmetric(cov), dY
 
 
 def unscented_transform(
@@ -145,7 +160,7 @@ def unscented_transform(
     f = v.function(f, "f")
     residual, mean = v.optional_function(residual, "residual"), v.optional_function(mean, "mean")
     chi, wm, wc = sigma_points(mu, Sig, lam, beta)
-    y_mean, cov, _ = _recombine(_push(f, chi, "f", None, vectorized), wm, wc, residual, mean, vectorized)
+    y_mean, cov, _ = _recombine(_push(f, chi, "f", None, vectorized), wm, wc, _on_rows(residual, vectorized), mean)
     return y_mean, cov
 
 
@@ -233,10 +248,18 @@ def ukf_predict(
     Sig, R = v.covariances((Sig, "Sig", n), (R, "R", n))  # both at once
     g = v.function(g, "g")
     residual, mean = v.optional_function(residual, "residual"), v.optional_function(mean, "mean")
-    chi, wm, wc = _sigma_points(mu, Sig, v.scalar(lam, "lam"), v.scalar(beta, "beta"))
-    Y = _push(lambda x: g(x, u), chi, "g", n, vectorized)
-    mu_bar, Sig_bar, _ = _recombine(Y, wm, wc, residual, mean, vectorized)
-    return mu_bar, Sig_bar + R
+    lam, beta = v.scalar(lam, "lam"), v.scalar(beta, "beta")
+    g_rows = _on_points(lambda x: g(x, u), "g", n, vectorized)
+    return _ukf_predict(mu, Sig, g_rows, R, lam, beta, _on_rows(residual, vectorized), mean)
+
+
+def _ukf_predict(mu, Sig, g, R, lam, beta, residual, mean):
+    """:func:`ukf_predict` for checked arrays; ``g(chi)`` moves every sigma point (a row of chi) with the
+    control bound in, and ``residual`` takes the stack."""
+    chi, wm, wc = _sigma_points(mu, Sig, lam, beta)
+    Y = g(chi)  # Y_i = g(chi_i, u)
+    mu_bar, Sig_bar, _ = _recombine(Y, wm, wc, residual, mean)  # sum w_i Y_i, sum w_i (Y_i - mu_bar)(...)^T
+    return mu_bar, Sig_bar + R  # Sig_bar = sum w_i (Y_i - mu_bar)(Y_i - mu_bar)^T + R
 
 
 def ukf_update(
@@ -298,14 +321,29 @@ def ukf_update(
     h = v.function(h, "h")
     residual, mean = v.optional_function(residual, "residual"), v.optional_function(mean, "mean")
     x_residual = v.optional_function(x_residual, "x_residual")
-    chi, wm, wc = _sigma_points(mu_bar, Sig_bar, v.scalar(lam, "lam"), v.scalar(beta, "beta"))
-    Z = _push(h, chi, "h", k, vectorized)
-    z_hat, S, dZ = _recombine(Z, wm, wc, residual, mean, vectorized)
-    S = S + Q  # innovation covariance
-    dX = _differences(chi, mu_bar, x_residual, vectorized)
-    Sxz = (wc[:, None] * dX).T @ dZ  # cross-covariance Sig_xz
-    K = gain(Sxz, S)  # K = Sig_xz S^-1
+    lam, beta = v.scalar(lam, "lam"), v.scalar(beta, "beta")
+    h_rows = _on_points(h, "h", k, vectorized)
+    z_residual, x_rows = _on_rows(residual, vectorized), _on_rows(x_residual, vectorized)
+    z_hat, S, Sig_xz = _ukf_moments(mu_bar, Sig_bar, h_rows, Q, lam, beta, z_residual, mean, x_rows)
+    K = gain(Sig_xz, S)  # K = Sig_xz S^-1
     y = z - z_hat if residual is None else np.asarray(residual(z, z_hat), dtype=float)  # innovation
-    mu = mu_bar + K @ y
+    return _ukf_correct(mu_bar, Sig_bar, y, S, K)
+
+
+def _ukf_moments(mu_bar, Sig_bar, h, Q, lam, beta, residual, mean, x_residual):
+    """The sigma-point half of :func:`ukf_update` for checked arrays: the predicted measurement ``z_hat``, its
+    covariance ``S`` and the cross-covariance ``Sig_xz``; ``h`` and both residual hooks take stacks of rows."""
+    chi, wm, wc = _sigma_points(mu_bar, Sig_bar, lam, beta)
+    Z = h(chi)  # Z_i = h(chi_i)
+    z_hat, S, dZ = _recombine(Z, wm, wc, residual, mean)  # z_hat = sum w_i Z_i
+    S = S + Q  # S = sum w_i (Z_i - z_hat)(Z_i - z_hat)^T + Q
+    dX = chi - mu_bar if x_residual is None else x_residual(chi, mu_bar)  # chi_i - mu_bar
+    Sig_xz = (wc[:, None] * dX).T @ dZ  # Sig_xz = sum w_i (chi_i - mu_bar)(Z_i - z_hat)^T
+    return z_hat, S, Sig_xz
+
+
+def _ukf_correct(mu_bar, Sig_bar, y, S, K):
+    """The correction of :func:`ukf_update` with the innovation ``y``, its covariance ``S`` and the gain ``K``."""
+    mu = mu_bar + K @ y  # mu = mu_bar + K y
     Sig = Sig_bar - K @ S @ K.T  # Sig = Sig_bar - K S K^T
     return mu, symmetric(Sig)

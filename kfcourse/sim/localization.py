@@ -14,20 +14,21 @@ from dataclasses import dataclass
 import numpy as np
 
 from .. import _validate as v
-from ..filters.association import mahalanobis
-from ..filters.ekf import ekf_predict, ekf_update
-from ..filters.linalg import innovation_covariance
-from ..filters.ukf import ukf_predict, ukf_update
+from ..filters.association import _mahalanobis
+from ..filters.ekf import _ekf_correct, _ekf_innovation, _ekf_predict
+from ..filters.linalg import gain
+from ..filters.ukf import _ukf_correct, _ukf_moments, _ukf_predict
 from ..models import (
-    pose_mean,
-    pose_residual,
-    range_bearing,
-    range_bearing_jacobian,
-    range_bearing_mean,
-    range_bearing_residual,
-    unicycle,
+    _pose_mean,
+    _pose_residual,
+    _range_bearing,
+    _range_bearing_jacobian,
+    _range_bearing_mean,
+    _range_bearing_residual,
+    _unicycle,
+    _unicycle_control_jacobian,
+    _unicycle_jacobian,
     unicycle_control_jacobian,
-    unicycle_jacobian,
     wrap_angle,
 )
 from .records import read_only
@@ -128,6 +129,24 @@ def process_noise_of_odometry(mu, u, dt: float, M) -> np.ndarray:
     return W @ M @ W.T  # R = W M W^T
 
 
+def _check_filter_held(filter, motion_noise, sensor_noise, mu_bar, Sig_bar, mu, Sig) -> None:
+    """After the lap: every number finite and every covariance positive semi-definite, else a ValueError.
+
+    The run checks its arguments once and then calls the filters' unchecked cores, so a filter that broke
+    down at extreme noise scales is caught here (the public filter steps refuse such a covariance).
+    """
+    broke = f"the {filter.upper()} broke down with motion_noise={motion_noise} and sensor_noise={sensor_noise}"
+    for name, a in (("mu_bar", mu_bar), ("Sig_bar", Sig_bar), ("mu", mu), ("Sig", Sig)):
+        finite = np.isfinite(a).reshape(len(a), -1).all(axis=1)  # one bool per step
+        if not finite.all():
+            raise ValueError(f"{broke}: {name} is not finite (no NaN or inf) from step {np.argmin(finite)}")
+    for name, a in (("Sig_bar", Sig_bar), ("Sig", Sig)):
+        try:
+            v.covariance_stack(a, name, *a.shape[:2])
+        except ValueError as err:
+            raise ValueError(f"{broke}: {err}") from None
+
+
 def landmark_loop(
     seed: int = 0,
     *,
@@ -214,10 +233,11 @@ def landmark_loop(
         if kidnap >= n_steps:
             raise ValueError(f"kidnap must be a step below {n_steps}, got {kidnap}")
 
+    # The arguments are checked: from here on the run calls the models' and filters' unchecked cores.
     # Truth: after a kidnapping the robot is half a lap further on and drives the controls of that place.
     path = [np.zeros(3)]  # path[i]: where the loop puts the robot before its control i
     for c in lap:
-        path.append(unicycle(path[-1], c, dt))
+        path.append(_unicycle(path[-1], c, dt))
     start = path[0]
     shift = np.zeros(n_steps, dtype=int)
     if kidnap is not None:
@@ -229,7 +249,7 @@ def landmark_loop(
     for k in range(n_steps):
         if k == kidnap:
             pose = path[place[k]]  # lifted and set down; the filter is not told
-        pose = unicycle(pose, u[k], dt)  # x_k = g(x_{k-1}, u_k)
+        pose = _unicycle(pose, u[k], dt)  # x_k = g(x_{k-1}, u_k)
         truth[k] = pose
 
     v_std, omega_std = motion_noise * V_STD, motion_noise * OMEGA_STD
@@ -246,54 +266,39 @@ def landmark_loop(
 
     M = np.diag([v_std, omega_std]) ** 2  # odometry noise covariance
     Q = np.diag([range_std, bearing_std]) ** 2  # measurement noise covariance
-    z_residual = range_bearing_residual if wrap_bearing else None
+    z_residual = _range_bearing_residual if wrap_bearing else None
+    z_mean = _range_bearing_mean if wrap_bearing else None
     mu, Sig = start.copy(), np.array(SIG0)
     mu_bar, Sig_bar = np.empty((n_steps, 3)), np.empty((n_steps, 3, 3))
     mus, Sigs = np.empty((n_steps, 3)), np.empty((n_steps, 3, 3))
+    g = lambda x, c: _unicycle(x, c, dt)  # noqa: E731
+    G = lambda x, c: _unicycle_jacobian(x, c, dt)  # noqa: E731
     for k in range(n_steps):
-        R = process_noise_of_odometry(mu, odometry[k], dt, M)
+        W = _unicycle_control_jacobian(mu, odometry[k], dt)
+        R = W @ M @ W.T  # R = W M W^T, as in process_noise_of_odometry
         if filter == "ekf":
-            mu, Sig = ekf_predict(
-                mu, Sig, odometry[k], lambda x, c: unicycle(x, c, dt), lambda x, c: unicycle_jacobian(x, c, dt), R
-            )
+            mu, Sig = _ekf_predict(mu, Sig, odometry[k], g, G, R)
         else:
-            mu, Sig = ukf_predict(
-                mu,
-                Sig,
-                odometry[k],
-                lambda x, c: unicycle(x, c, dt),
-                R,
-                UKF_LAM,
-                residual=pose_residual,
-                mean=pose_mean,
-                vectorized=True,
-            )
+            g_all = lambda chi, c=odometry[k]: g(chi, c)  # every sigma point (a row of chi) at once  # noqa: E731
+            mu, Sig = _ukf_predict(mu, Sig, g_all, R, UKF_LAM, 0.0, _pose_residual, _pose_mean)
         mu_bar[k], Sig_bar[k] = mu, Sig
         for j in np.flatnonzero(seen[k]):  # one landmark at a time: sequential updates
-            h = lambda x, mj=m[j]: range_bearing(x, mj)  # noqa: E731
-            H = lambda x, mj=m[j]: range_bearing_jacobian(x, mj)  # noqa: E731
-            if gate is not None:
-                nu = z[k, j] - h(mu) if z_residual is None else z_residual(z[k, j], h(mu))  # innovation
-                if mahalanobis(nu, innovation_covariance(Sig, H(mu), Q)) > gate:
-                    continue  # outside the validation gate: rejected
+            h = lambda x, mj=m[j]: _range_bearing(x, mj)  # noqa: E731
+            H = lambda x, mj=m[j]: _range_bearing_jacobian(x, mj)  # noqa: E731
+            if filter == "ekf" or gate is not None:  # innovation, H and S: for the EKF's update and either's gate
+                y, Hj, S = _ekf_innovation(mu, Sig, z[k, j], h, H, Q, z_residual)
+            if gate is not None and _mahalanobis(y, S) > gate:
+                continue  # outside the validation gate: rejected
             used[k, j] = True
             if filter == "ekf":
-                mu, Sig = ekf_update(mu, Sig, z[k, j], h, H, Q, residual=z_residual)
+                mu, Sig = _ekf_correct(mu, Sig, y, Hj, S, Q)
             else:
-                mu, Sig = ukf_update(
-                    mu,
-                    Sig,
-                    z[k, j],
-                    h,
-                    Q,
-                    UKF_LAM,
-                    residual=z_residual,
-                    mean=range_bearing_mean if wrap_bearing else None,
-                    x_residual=pose_residual,
-                    vectorized=True,
-                )
+                z_hat, S_u, Sig_xz = _ukf_moments(mu, Sig, h, Q, UKF_LAM, 0.0, z_residual, z_mean, _pose_residual)
+                y_u = z[k, j] - z_hat if z_residual is None else z_residual(z[k, j], z_hat)  # innovation
+                mu, Sig = _ukf_correct(mu, Sig, y_u, S_u, gain(Sig_xz, S_u))  # K = Sig_xz S^-1
             mu[2] = wrap_angle(mu[2])  # the update may push the heading past pi
         mus[k], Sigs[k] = mu, Sig
+    _check_filter_held(filter, motion_noise, sensor_noise, mu_bar, Sig_bar, mus, Sigs)
 
     err = truth[:, :2] - mus[:, :2]
     Sxy = Sigs[:, :2, :2]

@@ -1,7 +1,8 @@
 """Pictures rendered for HiDPI screens: more pixels, the same picture.
 
-A demo's picture is rendered ``PIXEL_DENSITY * DISPLAY_WIDTH`` pixels wide and shown
-``DISPLAY_WIDTH`` CSS pixels wide; a page without a kernel gets a PNG of the first frame.
+A demo's picture is rendered ``PIXEL_DENSITY * display_width`` pixels wide and shown
+``display_width`` CSS pixels wide (``DISPLAY_WIDTH`` unless the demo limits its picture's
+width); a page without a kernel gets a PNG of the first frame.
 """
 
 from __future__ import annotations
@@ -89,7 +90,8 @@ def test_demo_picture_is_rendered_for_a_hidpi_screen(name):
     assert demo.image.format == "jpeg"
     shown = picture(demo.image.value)
     assert shown.format == "JPEG"
-    assert shown.size[0] == PIXEL_DENSITY * DISPLAY_WIDTH
+    assert demo.display_width <= DISPLAY_WIDTH
+    assert shown.size[0] == PIXEL_DENSITY * demo.display_width
 
 
 @pytest.mark.parametrize("name", DEMOS)
@@ -97,7 +99,7 @@ def test_demo_hands_pages_without_a_kernel_its_first_frame(name):
     demo = getattr(kf.demos, name)(seed=0)
     data, metadata = demo._repr_mimebundle_()
     assert WIDGET_VIEW in data and "text/plain" in data  # the live widget is still there for JupyterLab
-    assert metadata["image/png"]["width"] == DISPLAY_WIDTH  # shown at the widget's size
+    assert metadata["image/png"]["width"] == demo.display_width  # shown at the widget's size
     png = picture(base64.b64decode(data["image/png"]))
     assert png.format == "PNG"
     first = picture(demo.image.value)
