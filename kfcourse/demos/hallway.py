@@ -135,8 +135,8 @@ def hallway(seed: int = 0) -> Demo:
         # of 0.25 (few full redraws), and the ticks stop at 1, as a probability does.
         top = 0.25 * np.ceil(float(model.belief.max()) / 0.7 / 0.25)
         if ax.get_ylim()[1] != top:
-            ax.set_ylim(0, top)
             ax.set_yticks([t for t in MaxNLocator(6).tick_values(0, top) if t <= 1.0 + 1e-9])
+            ax.set_ylim(0, top)  # after the ticks, which may reach a rounding past the top and widen it
             renderer.invalidate()
         update_belief_bars(bars, model.belief)
         colour = palette.PREDICTION if model.phase == "predicted" else palette.ESTIMATE
