@@ -28,7 +28,7 @@ def symmetric(A: np.ndarray) -> np.ndarray:
     -------
     ndarray, shape (n, n)
     """
-    return 0.5 * (A + A.T)
+    return 0.5 * (A + A.T.copy())  # a contiguous copy of A^T adds faster than the transposed view
 
 
 def innovation_covariance(Sig_bar: np.ndarray, H: np.ndarray, Q: np.ndarray) -> np.ndarray:
@@ -111,6 +111,7 @@ def joseph_correct(mu_bar, Sig_bar, y, H, Q, K) -> tuple[np.ndarray, np.ndarray]
     (mu, Sig) : shapes (n,), (n, n)
     """
     mu = mu_bar + K.dot(y)  # mu = mu_bar + K y
-    I_KH = np.eye(mu_bar.size) - K.dot(H)  # I - K H
-    Sig = I_KH.dot(Sig_bar).dot(I_KH.T) + K.dot(Q).dot(K.T)  # Joseph form of (I - K H) Sig_bar
+    KH = K.dot(H)
+    A = Sig_bar - KH.dot(Sig_bar)  # (I - K H) Sig_bar, with no identity matrix to build
+    Sig = A - A.dot(KH.T) + K.dot(Q).dot(K.T)  # Joseph form: A (I - K H)^T + K Q K^T
     return mu, symmetric(Sig)
