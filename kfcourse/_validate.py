@@ -29,12 +29,17 @@ def all_finite(a: np.ndarray) -> bool:
     return math.isfinite(total) or bool(np.isfinite(a).all())
 
 
-def finite(x, name: str) -> np.ndarray:
-    """Return ``x`` as a float array, rejecting NaN, inf and non-numbers."""
+def _floats(x, name: str) -> np.ndarray:
+    """``x`` as a float array, rejecting non-numbers (NaN and inf are left to the caller)."""
     try:
-        a = np.asarray(x, dtype=float)
+        return np.asarray(x, dtype=float)
     except (TypeError, ValueError):
         raise ValueError(f"{name} must be numeric, got {x!r}") from None
+
+
+def finite(x, name: str) -> np.ndarray:
+    """Return ``x`` as a float array, rejecting NaN, inf and non-numbers."""
+    a = _floats(x, name)
     if not all_finite(a):
         raise ValueError(f"{name} must be finite (no NaN or inf), got {x!r}")
     return a
@@ -129,14 +134,8 @@ def matrix(x, name: str, rows: int | None = None, cols: int | None = None) -> np
     return _shaped(a, name, rows, cols)
 
 
-def _square(x, name: str, n: int | None) -> np.ndarray:
-    """A non-empty, square ``(n, n)`` float array, not yet checked finite (:func:`covariances` does that)."""
-    try:
-        a = np.asarray(x, dtype=float)
-    except (TypeError, ValueError):
-        raise ValueError(f"{name} must be numeric, got {x!r}") from None
-    if a.shape == (n, n) and n:  # the usual case, told first
-        return a
+def _square(a: np.ndarray, name: str, n: int | None) -> np.ndarray:
+    """The float array ``a`` as a non-empty, square ``(n, n)`` matrix; a scalar becomes 1x1."""
     a = _shaped(a, name, n, n)
     if a.size == 0:
         raise ValueError(f"{name} must not be empty")
@@ -206,7 +205,10 @@ def covariances(*named: tuple[object, str, int | None]) -> list[np.ndarray]:
     list of ndarray
         The matrices as float arrays, in the order given.
     """
-    mats = [_square(x, name, n) for x, name, n in named]
+    mats = []
+    for x, name, n in named:
+        a = _floats(x, name)
+        mats.append(a if a.shape == (n, n) and n else _square(a, name, n))  # the usual shape told first
     M = block_diagonal(mats)
     if not (all_finite(M) and _exactly_symmetric(M) and _positive_definite(M)):
         for a, (x, name, _) in zip(mats, named, strict=True):
