@@ -20,11 +20,11 @@ _SUM_ATOL = 1e-6  # how far a probability vector may be from summing to 1
 
 def all_finite(a: np.ndarray) -> bool:
     """Whether every element of the float array ``a`` is finite (no NaN, no inf)."""
-    flat = a.ravel()
-    # A sum is finite only if every term is: NaN and inf carry through (and squares cannot
-    # cancel an inf).  Python sums a short list (a filter's vectors and matrices) faster than
-    # numpy starts up; a longer array's sum of squares is one numpy call.
-    total = sum(flat.tolist()) if flat.size <= 16 else flat.dot(flat)
+    # A sum is finite only if every term is: NaN and inf carry through (and squares cannot cancel an inf).
+    if a.size <= 16:  # a filter's vectors and matrices: Python sums a short list faster than numpy starts up
+        total = sum(a.ravel().tolist())
+    else:  # longer: the sum of squares in one numpy call (vdot flattens, and does not warn if it overflows)
+        total = np.vdot(a, a)
     # A non-finite sum of finite terms is an overflow, so then look at each element.
     return math.isfinite(total) or bool(np.isfinite(a).all())
 

@@ -111,7 +111,7 @@ def joseph_correct(mu_bar, Sig_bar, y, H, Q, K) -> tuple[np.ndarray, np.ndarray]
     (mu, Sig) : shapes (n,), (n, n)
     """
     mu = mu_bar + K.dot(y)  # mu = mu_bar + K y
-    KH = K.dot(H)
-    A = Sig_bar - KH.dot(Sig_bar)  # (I - K H) Sig_bar, with no identity matrix to build
-    Sig = A - A.dot(KH.T) + K.dot(Q).dot(K.T)  # Joseph form: A (I - K H)^T + K Q K^T
+    I_KH = 0.0 - K.dot(H)  # I - K H: 0 - K H, and 1 added down the diagonal (quicker than building I)
+    I_KH.ravel()[:: mu_bar.size + 1] += 1.0
+    Sig = I_KH.dot(Sig_bar).dot(I_KH.T) + K.dot(Q).dot(K.T)  # Joseph form of (I - K H) Sig_bar
     return mu, symmetric(Sig)
