@@ -7,12 +7,14 @@ Run by hand from the repository root (it is not a pytest test)::
 It needs the ``dev`` extra (filterpy).  Three filters are timed on the same
 problems in both libraries -- the linear Kalman filter on a 2-D constant-velocity
 tracker, and the EKF and the UKF on a unicycle robot reading range and bearing to
-one landmark -- after checking that both libraries compute the same numbers.
-Each row reports the median, over several rounds, of the mean time of one
-predict + update step, and the range of the kfcourse / filterpy ratio over the
-rounds (on a shared machine the spread says how far to trust the median); a last
-row reports ``import kfcourse`` in a fresh interpreter.  kfcourse checks every input on every call (finite, shapes, each
-covariance symmetric and positive semi-definite); filterpy checks none.
+one landmark, set up in ``benchmarks/filterpy_pairs.py`` (which the agreement test
+``tests/filters/test_filterpy_agreement.py`` shares) -- after checking that both
+libraries compute the same numbers.  Each row reports the median, over several
+rounds, of the mean time of one predict + update step, and the range of the
+kfcourse / filterpy ratio over the rounds (on a shared machine the spread says how
+far to trust the median); a last row reports ``import kfcourse`` in a fresh interpreter.  kfcourse checks every
+input on every call (finite, shapes, each covariance symmetric and positive
+semi-definite); filterpy checks none.
 
 Noise letters differ between the libraries: kfcourse's ``R`` (process) is
 filterpy's ``Q``, and kfcourse's ``Q`` (measurement) is filterpy's ``R``.
@@ -25,91 +27,54 @@ import subprocess
 import sys
 import time
 from collections.abc import Callable
-from functools import partial
 
 import numpy as np
-from filterpy.kalman import ExtendedKalmanFilter, JulierSigmaPoints, KalmanFilter, UnscentedKalmanFilter
-
-import kfcourse as kf
-from kfcourse.models import pose_mean, pose_residual, range_bearing_mean, range_bearing_residual
+from filterpy_pairs import (
+    CONTROL,
+    CV_MU0,
+    CV_SIG0,
+    SEED,
+    UNI_MU0,
+    UNI_SIG0,
+    cv_readings,
+    filterpy_ekf,
+    filterpy_kf,
+    filterpy_ukf,
+    kfcourse_ekf_predict,
+    kfcourse_ekf_update,
+    kfcourse_kf_step,
+    kfcourse_ukf_predict,
+    kfcourse_ukf_update,
+    unicycle_readings,
+)
 
 STEPS = 2_000  # filter steps per timed round
 ROUNDS = 7  # timed rounds per library; the median round is reported
 IMPORT_RUNS = 7  # fresh interpreters timed for `import kfcourse`
-DT = 0.1  # s, time step of every model
-SEED = 20240601  # random seed for the simulated runs
+UKF_LAM = 3 - UNI_MU0.size  # kfcourse spread lam = 3 - n; filterpy's Julier kappa is the same number
 
 KF_TARGET = 1.5  # kfcourse / filterpy time ratio the kf_step (inputs fully checked on every call) must not exceed
 UKF_TARGET = 0.5  # kfcourse / filterpy time ratio the UKF step must not exceed
 IMPORT_TARGET = 0.3  # s, `import kfcourse` must take less than this
 
-# Constant-velocity tracker (2-D): state [px, py, vx, vy] (m, m, m/s, m/s).
-CV_R = np.diag([1e-4, 1e-4, 1e-2, 1e-2])  # process noise (m², m², m²/s², m²/s²)
-CV_Q = np.diag([0.25, 0.25])  # measurement noise, m²
-CV_MU0 = np.array([0.0, 0.0, 1.0, 0.5])  # initial mean (m, m, m/s, m/s)
-CV_SIG0 = np.diag([1.0, 1.0, 4.0, 4.0])  # initial covariance (m², m², m²/s², m²/s²)
 
-# Unicycle robot reading one landmark: pose [x, y, theta] (m, m, rad).
-LANDMARK = np.array([5.0, 3.0])  # m
-CONTROL = np.array([1.0, 0.2])  # [V (m/s), omega (rad/s)], a circle of radius 5 m
-UNI_R = np.diag([1e-3, 1e-3, 1e-4])  # process noise (m², m², rad²)
-UNI_Q = np.diag([0.01, 0.0025])  # measurement noise (m², rad²)
-UNI_MU0 = np.array([0.0, 0.0, 0.0])  # initial pose (m, m, rad)
-UNI_SIG0 = np.diag([0.1, 0.1, 0.05])  # initial covariance (m², m², rad²)
-UKF_LAM = 3 - UNI_MU0.size  # kfcourse spread lam = 3 - n; filterpy's Julier kappa is the same number
-
-
-# ---------------------------------------------------------------- simulated runs
-def cv_measurements(rng: np.random.Generator) -> list[np.ndarray]:
-    """Noisy 2-D positions of a target moving at constant velocity."""
-    F, H = kf.models.constant_velocity(DT, 2)
-    x, zs = CV_MU0.copy(), []
-    for _ in range(STEPS):
-        x = F @ x + rng.multivariate_normal(np.zeros(4), CV_R)
-        zs.append(H @ x + rng.multivariate_normal(np.zeros(2), CV_Q))
-    return zs
-
-
-def unicycle_measurements(rng: np.random.Generator) -> list[np.ndarray]:
-    """Noisy range-bearing readings of LANDMARK from a robot driving a circle."""
-    x, zs = UNI_MU0.copy(), []
-    for _ in range(STEPS):
-        x = kf.unicycle(x, CONTROL, DT) + rng.multivariate_normal(np.zeros(3), UNI_R)
-        z = kf.range_bearing(x, LANDMARK) + rng.multivariate_normal(np.zeros(2), UNI_Q)
-        zs.append(np.array([z[0], kf.wrap_angle(z[1])]))
-    return zs
-
-
-# ---------------------------------------------------------------- the filters
+# ---------------------------------------------------------------- the timed runs
 # Each factory returns ``run(zs) -> list of (mean, covariance)``, one pair per step,
 # starting afresh from the initial belief.  The same functions are timed.
-
-g = partial(kf.unicycle, dt=DT)  # g(x, u)
-G = partial(kf.unicycle_jacobian, dt=DT)  # G(x, u)
-h = partial(kf.range_bearing, landmark=LANDMARK)  # h(x)
-H_jac = partial(kf.range_bearing_jacobian, landmark=LANDMARK)  # H(x)
-
-
 def kfcourse_kf() -> Callable:
-    F, H = kf.models.constant_velocity(DT, 2)
-
     def run(zs):
         mu, Sig, out = CV_MU0, CV_SIG0, []
         for z in zs:
-            mu, Sig = kf.kf_step(mu, Sig, None, z, F, None, H, CV_R, CV_Q)
+            mu, Sig = kfcourse_kf_step(mu, Sig, z)
             out.append((mu, Sig))
         return out
 
     return run
 
 
-def filterpy_kf() -> Callable:
-    F, H = kf.models.constant_velocity(DT, 2)
-    f = KalmanFilter(dim_x=4, dim_z=2)
-    f.F, f.H, f.Q, f.R = F, H, CV_R, CV_Q  # filterpy: Q process, R measurement
-
+def filterpy_kf_run() -> Callable:
     def run(zs):
-        f.x, f.P, out = CV_MU0.copy(), CV_SIG0.copy(), []
+        f, out = filterpy_kf(), []
         for z in zs:
             f.predict()
             f.update(z)
@@ -123,31 +88,20 @@ def kfcourse_ekf() -> Callable:
     def run(zs):
         mu, Sig, out = UNI_MU0, UNI_SIG0, []
         for z in zs:
-            mu, Sig = kf.ekf_predict(mu, Sig, CONTROL, g, G, UNI_R)
-            mu, Sig = kf.ekf_update(mu, Sig, z, h, H_jac, UNI_Q, residual=range_bearing_residual)
+            mu, Sig = kfcourse_ekf_predict(mu, Sig)
+            mu, Sig = kfcourse_ekf_update(mu, Sig, z)
             out.append((mu, Sig))
         return out
 
     return run
 
 
-class _UnicycleEKF(ExtendedKalmanFilter):
-    """filterpy's EKF with the nonlinear motion model for the mean."""
-
-    def predict_x(self, u=0):
-        self.x = g(self.x, u)
-
-
-def filterpy_ekf() -> Callable:
-    f = _UnicycleEKF(dim_x=3, dim_z=2)
-    f.Q, f.R = UNI_R, UNI_Q  # filterpy: Q process, R measurement
-
+def filterpy_ekf_run() -> Callable:
     def run(zs):
-        f.x, f.P, out = UNI_MU0.copy(), UNI_SIG0.copy(), []
+        f, out = filterpy_ekf(), []
         for z in zs:
-            f.F = G(f.x, CONTROL)  # Jacobian at the previous mean, before predict_x moves it
             f.predict(CONTROL)
-            f.update(z, H_jac, h, residual=range_bearing_residual)
+            f.update(z)
             out.append((f.x, f.P))
         return out
 
@@ -158,45 +112,17 @@ def kfcourse_ukf() -> Callable:
     def run(zs):
         mu, Sig, out = UNI_MU0, UNI_SIG0, []
         for z in zs:
-            mu, Sig = kf.ukf_predict(
-                mu, Sig, CONTROL, g, UNI_R, UKF_LAM, residual=pose_residual, mean=pose_mean, vectorized=True
-            )
-            mu, Sig = kf.ukf_update(
-                mu,
-                Sig,
-                z,
-                h,
-                UNI_Q,
-                UKF_LAM,
-                residual=range_bearing_residual,
-                mean=range_bearing_mean,
-                x_residual=pose_residual,
-                vectorized=True,  # the models take all sigma points at once; filterpy calls them per point
-            )
+            mu, Sig = kfcourse_ukf_predict(mu, Sig, UKF_LAM, vectorized=True)
+            mu, Sig = kfcourse_ukf_update(mu, Sig, z, UKF_LAM, vectorized=True)
             out.append((mu, Sig))
         return out
 
     return run
 
 
-def filterpy_ukf() -> Callable:
-    points = JulierSigmaPoints(n=3, kappa=UKF_LAM)  # spread n + kappa, as kfcourse's n + lam
-    f = UnscentedKalmanFilter(
-        dim_x=3,
-        dim_z=2,
-        dt=DT,
-        hx=h,
-        fx=lambda x, dt, u: kf.unicycle(x, u, dt),
-        points=points,
-        x_mean_fn=pose_mean,
-        z_mean_fn=range_bearing_mean,
-        residual_x=pose_residual,
-        residual_z=range_bearing_residual,
-    )
-    f.Q, f.R = UNI_R, UNI_Q  # filterpy: Q process, R measurement
-
+def filterpy_ukf_run() -> Callable:
     def run(zs):
-        f.x, f.P, out = UNI_MU0.copy(), UNI_SIG0.copy(), []
+        f, out = filterpy_ukf(UKF_LAM), []
         for z in zs:
             f.predict(u=CONTROL)
             f.update(z)
@@ -241,9 +167,9 @@ def import_seconds() -> float:
 def main() -> None:
     rng = np.random.default_rng(SEED)
     problems = [
-        ("kf_step (CV 4-state)", kfcourse_kf(), filterpy_kf(), cv_measurements(rng), KF_TARGET),
-        ("EKF step (unicycle)", kfcourse_ekf(), filterpy_ekf(), unicycle_measurements(rng), None),
-        ("UKF step (unicycle)", kfcourse_ukf(), filterpy_ukf(), unicycle_measurements(rng), UKF_TARGET),
+        ("kf_step (CV 4-state)", kfcourse_kf(), filterpy_kf_run(), cv_readings(rng, STEPS), KF_TARGET),
+        ("EKF step (unicycle)", kfcourse_ekf(), filterpy_ekf_run(), unicycle_readings(rng, STEPS), None),
+        ("UKF step (unicycle)", kfcourse_ukf(), filterpy_ukf_run(), unicycle_readings(rng, STEPS), UKF_TARGET),
     ]
 
     for name, ours, theirs, zs, _ in problems:

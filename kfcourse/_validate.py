@@ -20,20 +20,26 @@ _SUM_ATOL = 1e-6  # how far a probability vector may be from summing to 1
 
 def all_finite(a: np.ndarray) -> bool:
     """Whether every element of the float array ``a`` is finite (no NaN, no inf)."""
-    if a.size > 100:  # a long array: look at each element
-        return bool(np.isfinite(a).all())
-    # A short one (a filter's vectors and matrices): a sum is finite only if every term is
-    # (NaN and inf carry through), and Python sums a short list faster than numpy starts up.
+    # A sum is finite only if every term is: NaN and inf carry through (and squares cannot cancel an inf).
+    if a.size <= 16:  # a filter's vectors and matrices: Python sums a short list faster than numpy starts up
+        total = sum(a.ravel().tolist())
+    else:  # longer: the sum of squares in one numpy call (vdot flattens, and does not warn if it overflows)
+        total = np.vdot(a, a)
     # A non-finite sum of finite terms is an overflow, so then look at each element.
-    return math.isfinite(sum(a.ravel().tolist())) or bool(np.isfinite(a).all())
+    return math.isfinite(total) or bool(np.isfinite(a).all())
+
+
+def _floats(x, name: str) -> np.ndarray:
+    """``x`` as a float array, rejecting non-numbers (NaN and inf are left to the caller)."""
+    try:
+        return np.asarray(x, dtype=float)
+    except (TypeError, ValueError):
+        raise ValueError(f"{name} must be numeric, got {x!r}") from None
 
 
 def finite(x, name: str) -> np.ndarray:
     """Return ``x`` as a float array, rejecting NaN, inf and non-numbers."""
-    try:
-        a = np.asarray(x, dtype=float)
-    except (TypeError, ValueError):
-        raise ValueError(f"{name} must be numeric, got {x!r}") from None
+    a = _floats(x, name)
     if not all_finite(a):
         raise ValueError(f"{name} must be finite (no NaN or inf), got {x!r}")
     return a
@@ -97,6 +103,8 @@ def flag(x, name: str) -> bool:
 def vector(x, name: str, n: int | None = None) -> np.ndarray:
     """A finite 1-D array (a scalar becomes length 1), of length ``n`` if given."""
     a = finite(x, name)
+    if a.ndim == 1 and (n is None or len(a) == n):  # the usual case, told first
+        return a
     if a.ndim == 0:
         a = a.reshape(1)
     if a.ndim != 1:
@@ -106,9 +114,8 @@ def vector(x, name: str, n: int | None = None) -> np.ndarray:
     return a
 
 
-def matrix(x, name: str, rows: int | None = None, cols: int | None = None) -> np.ndarray:
-    """A finite 2-D array; a scalar becomes 1x1 and a 1-D array one row."""
-    a = finite(x, name)
+def _shaped(a: np.ndarray, name: str, rows: int | None, cols: int | None) -> np.ndarray:
+    """The float array ``a`` as a 2-D ``(rows, cols)`` matrix; a scalar becomes 1x1 and a 1-D array one row."""
     if a.ndim < 2:
         a = a.reshape(1, -1)
     if a.ndim != 2:
@@ -119,9 +126,17 @@ def matrix(x, name: str, rows: int | None = None, cols: int | None = None) -> np
     return a
 
 
-def _square(x, name: str, n: int | None) -> np.ndarray:
-    """A finite, non-empty, square ``(n, n)`` float array."""
-    a = matrix(x, name, n, n)
+def matrix(x, name: str, rows: int | None = None, cols: int | None = None) -> np.ndarray:
+    """A finite 2-D array; a scalar becomes 1x1 and a 1-D array one row."""
+    a = finite(x, name)
+    if a.shape == (rows, cols):  # the usual case, told first
+        return a
+    return _shaped(a, name, rows, cols)
+
+
+def _square(a: np.ndarray, name: str, n: int | None) -> np.ndarray:
+    """The float array ``a`` as a non-empty, square ``(n, n)`` matrix; a scalar becomes 1x1."""
+    a = _shaped(a, name, n, n)
     if a.size == 0:
         raise ValueError(f"{name} must not be empty")
     if a.shape[0] != a.shape[1]:
@@ -158,7 +173,7 @@ def block_diagonal(blocks: list[np.ndarray]) -> np.ndarray:
     r"""The square matrices :math:`A_1, A_2, \dots` down the diagonal, zeros elsewhere."""
     if len(blocks) == 1:
         return blocks[0]
-    size = sum(len(A) for A in blocks)
+    size = sum(map(len, blocks))
     M = np.zeros((size, size))
     start = 0
     for A in blocks:
@@ -172,12 +187,12 @@ def covariances(*named: tuple[object, str, int | None]) -> list[np.ndarray]:
     r"""Check several covariance matrices at once, each given as ``(x, name, n)``.
 
     Each must be a finite, symmetric, positive semi-definite ``(n, n)`` matrix
-    (``n=None``: any size).  Shape and finiteness are checked one by one; symmetry
+    (``n=None``: any size).  Shapes are checked one by one; finiteness, symmetry
     and definiteness together, on the block-diagonal matrix
 
     .. math:: M = \begin{pmatrix} A_1 & & \\ & A_2 & \\ & & \ddots \end{pmatrix}
 
-    (zeros off the blocks).  :math:`M` is symmetric exactly when every block is,
+    (zeros off the blocks).  :math:`M` is finite and symmetric exactly when every block is,
     and its eigenvalues are those of all the blocks together, so :math:`M` is
     positive definite exactly when every block is -- which one Cholesky
     factorisation of :math:`M` tells, as it exists only for a positive definite
@@ -190,10 +205,14 @@ def covariances(*named: tuple[object, str, int | None]) -> list[np.ndarray]:
     list of ndarray
         The matrices as float arrays, in the order given.
     """
-    mats = [_square(x, name, n) for x, name, n in named]
+    mats = []
+    for x, name, n in named:
+        a = _floats(x, name)
+        mats.append(a if a.shape == (n, n) and n else _square(a, name, n))  # the usual shape told first
     M = block_diagonal(mats)
-    if not (_exactly_symmetric(M) and _positive_definite(M)):
-        for a, (_, name, _) in zip(mats, named, strict=True):
+    if not (all_finite(M) and _exactly_symmetric(M) and _positive_definite(M)):
+        for a, (x, name, _) in zip(mats, named, strict=True):
+            finite(x, name)  # raises if this one holds a NaN or inf
             _covariance_alone(a, name)
     return mats
 

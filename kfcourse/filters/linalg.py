@@ -28,7 +28,7 @@ def symmetric(A: np.ndarray) -> np.ndarray:
     -------
     ndarray, shape (n, n)
     """
-    return 0.5 * (A + A.T)
+    return 0.5 * (A + A.T.copy())  # a contiguous copy of A^T adds faster than the transposed view
 
 
 def innovation_covariance(Sig_bar: np.ndarray, H: np.ndarray, Q: np.ndarray) -> np.ndarray:
@@ -111,6 +111,7 @@ def joseph_correct(mu_bar, Sig_bar, y, H, Q, K) -> tuple[np.ndarray, np.ndarray]
     (mu, Sig) : shapes (n,), (n, n)
     """
     mu = mu_bar + K.dot(y)  # mu = mu_bar + K y
-    I_KH = np.eye(mu_bar.size) - K.dot(H)  # I - K H
+    I_KH = 0.0 - K.dot(H)  # I - K H: 0 - K H, and 1 added down the diagonal (quicker than building I)
+    I_KH.ravel()[:: mu_bar.size + 1] += 1.0
     Sig = I_KH.dot(Sig_bar).dot(I_KH.T) + K.dot(Q).dot(K.T)  # Joseph form of (I - K H) Sig_bar
     return mu, symmetric(Sig)

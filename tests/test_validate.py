@@ -1,0 +1,84 @@
+"""The input checks' own paths: one look at several covariances, and finiteness by sums.
+
+``covariances`` checks finiteness, symmetry and definiteness of all its matrices on one
+block-diagonal matrix, and names the matrix at fault only after that look fails;
+``all_finite`` sums a short array in Python and a long one's squares in numpy, and looks
+at each element when a sum of finite numbers overflows.
+"""
+
+from __future__ import annotations
+
+import numpy as np
+import pytest
+
+import kfcourse as kf
+from kfcourse import _validate as v
+
+NAN, INF = float("nan"), float("inf")
+I2, I3 = np.eye(2), np.eye(3)
+
+
+@pytest.mark.parametrize("bad", [NAN, INF, -INF])
+@pytest.mark.parametrize("which", ["Sig", "R", "Q"])
+def test_the_covariance_that_is_not_finite_is_named(which, bad):
+    covs = {"Sig": I3.copy(), "R": 0.1 * I3, "Q": 0.5 * I2}
+    covs[which][1, 1] = bad
+    with pytest.raises(ValueError, match=rf"^{which} must be finite"):
+        v.covariances((covs["Sig"], "Sig", 3), (covs["R"], "R", 3), (covs["Q"], "Q", 2))
+
+
+def test_a_non_finite_entry_off_the_diagonal_is_found_too():
+    R = 0.1 * I3
+    R[0, 2] = R[2, 0] = NAN  # symmetric, so only the finiteness look can catch it
+    with pytest.raises(ValueError, match=r"^R must be finite"):
+        kf.kf_step(np.zeros(3), I3, None, [1.0, 2.0], I3, None, np.eye(2, 3), R, I2)
+
+
+def test_huge_finite_covariances_pass():
+    # their sum of squares overflows to inf, so each element is looked at, and all are finite
+    big = 1e200 * np.diag([1.0, 2.0, 3.0])
+    Sig, R = v.covariances((big, "Sig", 3), (big, "R", 3))
+    assert Sig[0, 0] == 1e200 and R[2, 2] == 3e200
+
+
+def test_semi_definite_and_rounding_asymmetric_covariances_pass():
+    singular = np.diag([1.0, 0.0])
+    skewed = np.array([[2.0, 1.0], [1.0 + 1e-12, 2.0]])  # asymmetric by rounding only
+    out = v.covariances((singular, "Sig", 2), (skewed, "R", 2))
+    assert out[0][1, 1] == 0.0 and out[1][1, 0] == 1.0 + 1e-12
+
+
+@pytest.mark.parametrize("size", [3, 16, 17, 500])
+def test_all_finite_short_and_long(size):
+    a = np.linspace(-1.0, 1.0, size)
+    assert v.all_finite(a) and v.all_finite(a.reshape(1, -1))
+    for bad in (NAN, INF, -INF):
+        b = a.copy()
+        b[size // 2] = bad
+        assert not v.all_finite(b)
+    assert v.all_finite(np.full(size, 1e300))  # overflowing sums of finite numbers
+
+
+def test_usual_shapes_and_the_others():
+    assert v.vector([1.0, 2.0], "x", 2).shape == (2,)
+    assert v.vector(3.0, "x", 1).shape == (1,)  # a scalar becomes length 1
+    assert v.matrix([1.0, 2.0], "A", 1, 2).shape == (1, 2)  # a 1-D array becomes one row
+    assert v.covariance(0.5, "Q", 1).shape == (1, 1)  # a scalar variance becomes 1x1
+    with pytest.raises(ValueError, match=r"^x must have length 3"):
+        v.vector([1.0, 2.0], "x", 3)
+    with pytest.raises(ValueError, match=r"^A must have shape \(2, 2\)"):
+        v.matrix(I3, "A", 2, 2)
+    with pytest.raises(ValueError, match=r"^Q must be a square covariance matrix"):
+        v.covariance(np.ones((2, 3)), "Q")
+    with pytest.raises(ValueError, match=r"^Q must be numeric"):
+        v.covariance("big", "Q", 1)
+
+
+def test_kf_step_returns_an_exactly_symmetric_covariance():
+    rng = np.random.default_rng(4)
+    A = rng.normal(size=(4, 4))
+    Sig = A @ A.T + np.eye(4)
+    F, H = rng.normal(size=(4, 4)), rng.normal(size=(2, 4))
+    _, Sig = kf.kf_step(np.zeros(4), Sig, None, [0.3, -0.2], F, None, H, 0.01 * np.eye(4), 0.2 * I2)
+    assert np.array_equal(Sig, Sig.T)
+    assert np.linalg.eigvalsh(Sig).min() > 0
