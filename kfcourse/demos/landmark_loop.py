@@ -140,8 +140,7 @@ def landmark_loop(seed: int = 0) -> Demo:
 
     def draw() -> None:
         update_loop_map(view, model.run, model.frame)
-        if update_error_strips(strips, model.run, model.frame):
-            renderer.invalidate(*strips.axes)  # new y limits: the strips' ticks in the background change
+        update_error_strips(strips, model.run, model.frame)
         readout.value = _readout(model)
         kidnap.description = "Undo kidnap" if model.kidnap is not None else "Kidnap"
 

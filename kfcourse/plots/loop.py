@@ -29,6 +29,7 @@ from matplotlib.colors import to_rgba
 from matplotlib.lines import Line2D
 from matplotlib.patches import Ellipse, Polygon, Rectangle
 from matplotlib.text import Text
+from matplotlib.ticker import FuncFormatter
 
 from . import palette
 from .artists import (
@@ -40,7 +41,7 @@ from .artists import (
     update_covariance_ellipse,
     update_robot,
 )
-from .style import new_figure, nice_limit
+from .style import FIGURE_SPACE, new_figure, nice_limit
 
 MAP_MARGIN = 1.5  # m of room around the landmarks and the true path
 ROBOT_SIZE = 0.45  # m from the robot's centre to its nose
@@ -236,9 +237,34 @@ def update_loop_map(view: LoopMap, run, k: int) -> None:
 # --------------------------------------------------------------------------- the error strips
 
 
+STRIP_TICKS = (-1.0, 0.0, 1.0)  # the strips' y ticks, as fractions of their limit
+MOVING_TICKS = (-1.0, 1.0)  # those whose label changes with the limit (the label 0 never does)
+TICK_WIDTH = 7  # characters a strip's tick label may take, as in "\u22120.0625"
+
+
+def strip_limit(run) -> float:
+    """The strips' y limit (m): the next power of two above 1.15 times the largest error or bound of ``run``.
+
+    A power of two changes rarely as the run changes, so the tick labels keep
+    their values while a student drags a slider a little.  Introduced in chapter 10.
+    """
+    error, bound = position_errors(run)
+    return nice_limit(1.15 * max(float(np.abs(error).max()), float(bound.max())))
+
+
+def _tick_text(value: float) -> str:
+    return f"{value:g}".replace("-", "\u2212")  # a true minus sign, as matplotlib's own labels
+
+
 @dataclass(frozen=True)
 class ErrorStrips:
-    """What :func:`error_strips` drew, one entry per axis (x, then y)."""
+    """What :func:`error_strips` drew, one entry per axis (x, then y).
+
+    The strips plot in units of their limit, :func:`strip_limit`: their axes
+    always run from -1 to 1, so their ticks and grid never move, and the tick
+    labels at -1 and 1 are text that says what they stand for in metres.  A new
+    run changes that text, never the axes.
+    """
 
     axes: tuple
     past: tuple[Line2D, ...]  #: the error up to the step shown
@@ -247,12 +273,13 @@ class ErrorStrips:
     cursors: tuple[Line2D, ...]  #: the step shown
     blind: tuple[Rectangle, ...]  #: the steps without readings (hidden without dropout)
     kidnap: tuple[Line2D, ...]  #: the kidnap step (hidden without one)
+    labels: tuple[tuple[Text, ...], ...]  #: the y tick labels of each axis at MOVING_TICKS
 
     @property
     def moving(self) -> list:
         """Every artist that changes with the step or the run, bottom to top."""
         per_axis = zip(self.blind, self.bands, self.kidnap, self.future, self.past, self.cursors, strict=True)
-        return [artist for group in per_axis for artist in group]
+        return [artist for group in per_axis for artist in group] + [text for axis in self.labels for text in axis]
 
 
 def _band_verts(t, bound) -> np.ndarray:
@@ -260,12 +287,25 @@ def _band_verts(t, bound) -> np.ndarray:
     return np.concatenate([np.column_stack([t, bound]), np.column_stack([t[::-1], -bound[::-1]])])
 
 
+def _tick_labels(ax) -> tuple[Text, ...]:
+    """Text where the y tick labels of ``ax`` at MOVING_TICKS stand, in their font, their value left to the caller.
+
+    The axis's own labels there are blanks, padded like its "0" to TICK_WIDTH
+    digits: they keep the room for the text in the layout, which the figure finds once.
+    """
+    ax.set_yticks(STRIP_TICKS)
+    ax.yaxis.set_major_formatter(FuncFormatter(lambda y, _: ("0" if y == 0 else "").rjust(TICK_WIDTH, FIGURE_SPACE)))
+    tick = ax.yaxis.get_major_ticks()[0]
+    transform, va, ha = ax.get_yaxis_text1_transform(tick.get_tick_padding() + tick.get_pad())
+    style = {"fontproperties": tick.label1.get_fontproperties(), "color": tick.label1.get_color()}
+    return tuple(ax.text(0.0, y, "", transform=transform, va=va, ha=ha, **style) for y in MOVING_TICKS)
+
+
 def error_strips(axes, run, k: int | None = None) -> ErrorStrips:
     """Draw the x and y position errors of ``run`` with their 2-sigma bands.
 
-    See :func:`position_errors` for the definitions.  The shared y limit is
-    the next power of two above the largest error or bound, so it changes rarely
-    as the run changes.  Introduced in chapter 10.
+    See :func:`position_errors` for the definitions and :func:`strip_limit`
+    for the shared y limit.  Introduced in chapter 10.
 
     Parameters
     ----------
@@ -281,11 +321,13 @@ def error_strips(axes, run, k: int | None = None) -> ErrorStrips:
     """
     k = _step(run, k)
     t = np.asarray(run.t, float)
-    parts: dict[str, list] = {name: [] for name in ("past", "future", "bands", "cursors", "blind", "kidnap")}
+    parts: dict[str, list] = {name: [] for name in ("past", "future", "bands", "cursors", "blind", "kidnap", "labels")}
     for ax, name in zip(axes, AXES, strict=True):
         ax.set_xlim(t[0], t[-1])
+        ax.set_ylim(-1.0, 1.0)  # in units of the strips' limit
         ax.axhline(0.0, color=palette.INK, lw=0.8, alpha=0.5)
         ax.set_ylabel(f"{name} error (m)")
+        labels = _tick_labels(ax)
         blind = Rectangle((t[0], -1e3), 0.0, 2e3, color=palette.TRUTH, alpha=0.25, lw=0, visible=False)
         ax.add_patch(blind)
         band = PolyCollection([], facecolors=palette.ESTIMATE, alpha=0.18, lw=0)
@@ -294,7 +336,7 @@ def error_strips(axes, run, k: int | None = None) -> ErrorStrips:
         (future,) = ax.plot([], [], color=palette.ESTIMATE, lw=1.2, alpha=0.35)
         (past,) = ax.plot([], [], color=palette.ESTIMATE, lw=1.8)
         (cursor,) = ax.plot([t[0], t[0]], [-1e3, 1e3], color=palette.INK, lw=1.0, alpha=0.6)
-        for key, artist in zip(parts, (past, future, band, cursor, blind, kidnap), strict=True):
+        for key, artist in zip(parts, (past, future, band, cursor, blind, kidnap, labels), strict=True):
             parts[key].append(artist)
     axes[-1].set_xlabel("time (s)")
     strips = ErrorStrips(tuple(axes), **{key: tuple(value) for key, value in parts.items()})
@@ -302,29 +344,25 @@ def error_strips(axes, run, k: int | None = None) -> ErrorStrips:
     return strips
 
 
-def update_error_strips(strips: ErrorStrips, run, k: int) -> bool:
+def update_error_strips(strips: ErrorStrips, run, k: int) -> None:
     """Show ``run`` with the cursor at step ``k`` on strips made by :func:`error_strips`.
 
-    Returns
-    -------
-    bool
-        True if the y limits changed: a renderer that keeps the static
-        background (ticks, labels) must then redraw it.
+    Only artists in :attr:`ErrorStrips.moving` change: a renderer that keeps the
+    static background need not redraw it, whatever the run.
     """
     k = _step(run, k)
     t = np.asarray(run.t, float)
     error, bound = position_errors(run)
-    top = nice_limit(1.15 * max(float(np.abs(error).max()), float(bound.max())))
-    changed = False
+    top = strip_limit(run)
+    error, bound = error / top, bound / top  # in units of the limit
     k0 = _kidnap_step(run)
-    for i, ax in enumerate(strips.axes):
-        if ax.get_ylim() != (-top, top):
-            ax.set_ylim(-top, top)
-            changed = True
+    for i in range(len(strips.axes)):
         strips.past[i].set_data(t[: k + 1], error[: k + 1, i])
         strips.future[i].set_data(t[k:], error[k:, i])
         strips.bands[i].set_verts([_band_verts(t, bound[:, i])])
         strips.cursors[i].set_xdata([t[k], t[k]])
+        for label, y in zip(strips.labels[i], MOVING_TICKS, strict=True):
+            label.set_text(_tick_text(y * top))
         blind = strips.blind[i]
         blind.set_visible(run.dropout is not None)
         if run.dropout is not None:
@@ -335,7 +373,6 @@ def update_error_strips(strips: ErrorStrips, run, k: int) -> bool:
         strips.kidnap[i].set_visible(k0 is not None)
         if k0 is not None:
             strips.kidnap[i].set_xdata([t[k0], t[k0]])
-    return changed
 
 
 # --------------------------------------------------------------------------- the whole picture

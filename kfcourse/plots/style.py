@@ -16,12 +16,9 @@ import io
 
 import numpy as np
 from matplotlib.artist import Artist
-from matplotlib.axes import Axes
 from matplotlib.backends.backend_agg import FigureCanvasAgg
 from matplotlib.figure import Figure
-from matplotlib.patches import Rectangle
 from matplotlib.ticker import FuncFormatter
-from matplotlib.transforms import IdentityTransform
 from PIL import Image
 
 from . import palette
@@ -116,8 +113,7 @@ class FigureRenderer:
     static background once, and each later :meth:`png` or :meth:`jpeg` restores
     it and draws only the dynamic artists (blitting), which is what makes a
     slider feel immediate.  Call :meth:`invalidate` after changing anything
-    static (axis limits, labels); when the change is in axes that fill a row
-    of the figure, pass them, and only their row is drawn again.
+    static (axis limits, labels).
 
     :meth:`jpeg` is the fast one (a 1900-pixel-wide picture encodes in a few ms,
     a PNG of it takes several times longer); :meth:`png` is lossless, for
@@ -130,23 +126,10 @@ class FigureRenderer:
         for artist in self.dynamic:
             artist.set_animated(True)
         self._background = None
-        self._stale_rows: list[Axes] = []  # axes whose static parts the background shows out of date
 
-    def invalidate(self, *rows: Axes) -> None:
-        """Draw the static background again at the next picture: all of it, or only the rows of ``rows``.
-
-        Parameters
-        ----------
-        *rows : matplotlib Axes
-            Axes whose static parts changed (new y limits, say), each alone in
-            its row of the figure: its band across the whole width, tick labels
-            included, is cleared and drawn again, at a fraction of the cost of
-            the whole figure.  None given: the whole background.
-        """
-        if not rows:
-            self._background = None
-        elif self._background is not None:
-            self._stale_rows += [ax for ax in rows if ax not in self._stale_rows]
+    def invalidate(self) -> None:
+        """Draw the whole static background again at the next picture (after a change to anything static)."""
+        self._background = None
 
     @property
     def pixel_width(self) -> int:
@@ -192,32 +175,10 @@ class FigureRenderer:
             if self.fig.get_layout_engine() is not None:
                 self.fig.set_layout_engine("none")  # keep the layout found once; it is slow to redo
             self._background = canvas.copy_from_bbox(self.fig.bbox)
-            self._stale_rows = []
         else:
             canvas.restore_region(self._background)
-            if self._stale_rows:
-                self._redraw_rows()
-                self._background = canvas.copy_from_bbox(self.fig.bbox)
         for artist in self.dynamic:
             if artist.get_visible():
                 self.fig.draw_artist(artist)
         width, height = canvas.get_width_height(physical=True)
         return Image.frombuffer(mode, (width, height), canvas.buffer_rgba(), "raw", mode, 0, 1)
-
-    def _redraw_rows(self) -> None:
-        """Clear the band of each stale axes across the figure and draw its static parts in it again.
-
-        The band spans the axes with everything it draws (its tight box) and half a tick label
-        beyond its top and bottom, where a y tick label at the old limits may have reached.
-        """
-        renderer = self.fig.canvas.get_renderer()
-        for ax in self._stale_rows:
-            box = ax.get_tightbbox(renderer)
-            label = max((t.get_size() for t in ax.get_yticklabels()), default=0.0)
-            reach = 0.5 * renderer.points_to_pixels(label) + 1.0  # px: half a tick label, and the antialiased edge
-            y0, y1 = min(box.y0, ax.bbox.y0 - reach), max(box.y1, ax.bbox.y1 + reach)
-            band = Rectangle((0.0, y0), self.fig.bbox.width, y1 - y0, transform=IdentityTransform())
-            band.set(facecolor=self.fig.get_facecolor(), edgecolor="none", figure=self.fig)
-            band.draw(renderer)
-            ax.draw(renderer)  # its animated artists are left out, as in a full draw
-        self._stale_rows = []

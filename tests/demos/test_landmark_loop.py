@@ -12,7 +12,7 @@ import pytest
 import kfcourse as kf
 from kfcourse.demos.landmark_loop import DROPOUT, FIRST_FRAME, GATE
 from kfcourse.filters.gaussian import ellipse_axes
-from kfcourse.plots.loop import position_errors
+from kfcourse.plots.loop import position_errors, strip_limit
 
 
 def make(seed=0):
@@ -121,6 +121,7 @@ def test_picture_shows_the_step():
     demo.controls["kidnap"].click()  # kidnapped at step 20: some readings get rejected later
     run = m.run
     error, bound = position_errors(run)
+    top = strip_limit(run)
     for k in (0, 45, 75, 121):
         demo.controls["frame"].value = k
         np.testing.assert_allclose(trail.get_xydata()[-1], run.mu[k, :2])
@@ -137,14 +138,13 @@ def test_picture_shows_the_step():
         assert note.get_text() == ("sensor blind" if DROPOUT[0] <= k < DROPOUT[1] else note.get_text())
         assert len(truth_before.get_xydata()) == 20 and len(truth_after.get_xydata()) == run.t.size - 20
         past_x, past_y = strips[4], strips[10]  # per axis: blind, band, kidnap, future, past, cursor
-        np.testing.assert_allclose(past_x.get_xydata()[-1], [run.t[k], error[k, 0]])
-        np.testing.assert_allclose(past_y.get_xydata()[-1], [run.t[k], error[k, 1]])
+        np.testing.assert_allclose(past_x.get_xydata()[-1], [run.t[k], error[k, 0] / top])  # in units of the limit
+        np.testing.assert_allclose(past_y.get_xydata()[-1], [run.t[k], error[k, 1] / top])
         assert strips[5].get_xdata()[0] == pytest.approx(run.t[k])
         band = strips[1].get_paths()[0].vertices
-        assert band[:, 1].max() == pytest.approx(bound[:, 0].max())  # +2 sqrt(Sig_xx) at its widest
-    for ax in strips[0].axes, strips[6].axes:
-        top = ax.get_ylim()[1]
-        assert top >= np.abs(error).max() and top >= bound.max()  # the strips hold the whole kidnapped run
+        assert band[:, 1].max() == pytest.approx(bound[:, 0].max() / top)  # +2 sqrt(Sig_xx) at its widest
+        assert strips[12].get_text() == f"\u2212{top:g}" and strips[13].get_text() == f"{top:g}"  # x strip's labels
+    assert top >= np.abs(error).max() and top >= bound.max()  # the strips hold the whole kidnapped run
 
 
 @pytest.mark.parametrize(
