@@ -62,6 +62,16 @@ def _wrap_number(a: float) -> float:
     return math.pi if a <= -math.pi else a  # the mod rounded up to 2 pi: that end maps to pi
 
 
+def _sinc(h: float) -> float:
+    """sin(h) / h, and 1 at h = 0: how much shorter than its arc of turn 2h a chord is.
+
+    The number ``np.sinc(h / np.pi)`` gives, to the last bit (numpy forms the same
+    argument, pi (h / pi)), without the array set-up that costs numpy ten times the sine.
+    """
+    y = np.pi * (h / np.pi)
+    return np.sin(y) / y if y else 1.0
+
+
 def _wrap(a):
     """:func:`wrap_angle` of a checked number or float array; an array already in range comes back itself."""
     if np.ndim(a) == 0:
@@ -198,7 +208,7 @@ def _unicycle(s, u, dt):
     x, y, th = s[..., 0], s[..., 1], s[..., 2]
     V, w = u
     half = 0.5 * w * dt
-    d = V * dt * np.sinc(half / np.pi)  # chord length: V dt sin(half)/half
+    d = V * dt * _sinc(half)  # chord length: V dt sin(half)/half
     out = np.empty(s.shape)  # C order whatever the input's: the last bits of sums over its rows depend on it
     out[..., 0] = x + d * np.cos(th + half)  # x' = x + d cos(theta + omega dt/2)
     out[..., 1] = y + d * np.sin(th + half)  # y' = y + d sin(theta + omega dt/2)
@@ -235,7 +245,7 @@ def _unicycle_jacobian(s, u, dt):
     """:func:`unicycle_jacobian` of a checked pose (3,), control (2,) and time step."""
     V, w = u
     half = 0.5 * w * dt
-    d = V * dt * np.sinc(half / np.pi)  # chord length
+    d = V * dt * _sinc(half)  # chord length
     phi = s[2] + half  # heading of the chord
     return np.array([[1.0, 0.0, -d * math.sin(phi)], [0.0, 1.0, d * math.cos(phi)], [0.0, 0.0, 1.0]])
 
@@ -271,7 +281,7 @@ def _unicycle_control_jacobian(s_, u, dt):
     """:func:`unicycle_control_jacobian` of a checked pose (3,), control (2,) and time step."""
     V, w = u
     h = 0.5 * w * dt
-    s = float(np.sinc(h / np.pi))  # sin(h) / h
+    s = float(_sinc(h))  # sin(h) / h
     ds = (math.cos(h) - s) / h if abs(h) > 1e-3 else -h / 3  # ds/dh; the series near 0 avoids 0/0
     d, phi = V * dt * s, s_[2] + h
     c, n = math.cos(phi), math.sin(phi)

@@ -7,7 +7,7 @@ import numpy as np
 
 from ..filters.gaussian import gaussian_pdf
 from ..plots import palette
-from ..plots.style import FigureRenderer, fixed_width_ticks, new_figure
+from ..plots.style import FigureRenderer, moving_tick_labels, new_figure, tick_text
 from ._base import Demo, slider
 
 X_RANGE = (-4.0, 4.0)
@@ -32,12 +32,23 @@ def d_range(x):
     return x / np.sqrt(x * x + OFFSET**2)  # dr/dx = x / r
 
 
-# name: (f, f', output-axis limits)
+# name: (f, f', the ticks of the output axis: five, evenly spaced, for every function)
 FUNCTIONS = {
-    "x²": (square, d_square, (-1.0, 9.0)),
-    "sin x": (np.sin, np.cos, (-1.5, 1.5)),
-    "range √(x² + 1)": (rng_range, d_range, (0.0, 5.0)),
+    "x²": (square, d_square, (0.0, 2.0, 4.0, 6.0, 8.0)),
+    "sin x": (np.sin, np.cos, (-1.0, -0.5, 0.0, 0.5, 1.0)),
+    "range √(x² + 1)": (rng_range, d_range, (1.0, 2.0, 3.0, 4.0, 5.0)),
 }
+
+
+def output_limits(ticks) -> tuple[float, float]:
+    """The output axis for evenly spaced ``ticks``: half a spacing of room beyond the end ones.
+
+    When every function has as many ticks, they sit at the same heights whichever
+    function is shown, so a new function changes the ticks' labels (moving text) and
+    not the picture's background, which would take a full redraw.
+    """
+    step = ticks[1] - ticks[0]
+    return ticks[0] - 0.5 * step, ticks[-1] + 0.5 * step
 
 
 class LinearizationModel:
@@ -73,15 +84,16 @@ class LinearizationModel:
         return float(f(self.m)), slope * slope * self.s * self.s  # mean f(m), variance f'(m)^2 s^2
 
 
-def function_panels(width: float, height: float, x_range, width_ratio: float, height_ratio: float):
+def function_panels(width: float, height: float, x_range, y_ticks, width_ratio: float, height_ratio: float):
     """The four panels of the demos of chapters 7 and 9: the curve f (top left) over the input
     density (bottom left, same x), the output density sideways on f's own y axis (top right) and
     a text panel (bottom right).  Both densities are drawn relative to a peak, so their axes
-    never rescale while a slider is dragged.
+    never rescale while a slider is dragged; the output axis starts with the ticks ``y_ticks``
+    (see :func:`output_limits`), whose labels are moving text.
 
     Returns
     -------
-    (fig, ax_f, ax_out, ax_in, ax_txt)
+    (fig, ax_f, ax_out, ax_in, ax_txt, y_labels)
     """
     fig, axes = new_figure(
         width,
@@ -93,7 +105,11 @@ def function_panels(width: float, height: float, x_range, width_ratio: float, he
     (ax_f, ax_out), (ax_in, ax_txt) = axes
     ax_in.sharex(ax_f)
     ax_out.sharey(ax_f)
+    ax_f.tick_params(labelbottom=False)  # the input panel under it labels x
+    ax_out.tick_params(labelleft=False)  # f's panel beside it labels y
     ax_f.set_xlim(*x_range)
+    ax_f.set_ylim(*output_limits(y_ticks))
+    y_labels = moving_tick_labels(ax_f, y_ticks, 5)
     ax_f.set_ylabel("output y = f(x)")
     ax_in.set_xlabel("input x")
     ax_in.set_ylabel("density\n(peak = 1)")
@@ -101,8 +117,17 @@ def function_panels(width: float, height: float, x_range, width_ratio: float, he
     ax_in.set_ylim(0.0, 1.15)
     ax_out.set_xlim(0.0, 1.6)
     ax_txt.axis("off")
-    fixed_width_ticks(ax_f.yaxis, 5)
-    return fig, ax_f, ax_out, ax_in, ax_txt
+    return fig, ax_f, ax_out, ax_in, ax_txt, y_labels
+
+
+def show_output_axis(ax_f, y_labels, ticks) -> tuple[float, float]:
+    """Give the output axis of :func:`function_panels` a function's ``ticks``; returns its limits."""
+    lo, hi = output_limits(ticks)
+    ax_f.set_ylim(lo, hi)
+    ax_f.set_yticks(ticks)  # at the heights of every function's ticks: the background stays as it is
+    for label, y in zip(y_labels, ticks, strict=True):
+        label.set_text(tick_text(y))
+    return lo, hi
 
 
 def linearization(seed: int = 0) -> Demo:
@@ -114,7 +139,9 @@ def linearization(seed: int = 0) -> Demo:
     Demo (an ipywidgets.VBox)
     """
     model = LinearizationModel(seed=seed)
-    fig, ax_f, ax_out, ax_in, ax_txt = function_panels(8.0, 5.4, X_RANGE, width_ratio=1.3, height_ratio=1.1)
+    fig, ax_f, ax_out, ax_in, ax_txt, y_labels = function_panels(
+        8.0, 5.4, X_RANGE, FUNCTIONS[model.function][2], width_ratio=1.3, height_ratio=1.1
+    )
 
     x = np.linspace(*X_RANGE, 400)
     (curve,) = ax_f.plot(x, x, color=palette.INK, lw=1.5, label="f(x)")
@@ -126,20 +153,16 @@ def linearization(seed: int = 0) -> Demo:
     (ekf,) = ax_out.plot([0, 1], [0, 1], color=palette.ESTIMATE, lw=2, label="EKF")
     (true_mean,) = ax_out.plot([0, 1], [0, 0], color=palette.TRUTH, lw=1.2, ls=":")
     (ekf_mean,) = ax_out.plot([0, 1], [0, 0], color=palette.ESTIMATE, lw=1.2, ls=":")
-    ax_out.legend(loc="upper right", fontsize=8)
+    ax_out.legend(loc="lower center", bbox_to_anchor=(0.5, 1.0), ncol=2, fontsize=8)  # above: no density reaches it
     info = ax_txt.text(
         -0.1, 0.95, "", transform=ax_txt.transAxes, ha="left", va="top", fontsize=8.5, family="monospace"
     )
-    renderer = FigureRenderer(fig, [tangent, point, inp, hist, ekf, true_mean, ekf_mean, info])
-    shown = {"function": None}
+    renderer = FigureRenderer(fig, [curve, tangent, point, inp, hist, ekf, true_mean, ekf_mean, info, *y_labels])
 
     def draw() -> None:
-        f, df, (lo, hi) = FUNCTIONS[model.function]
-        if shown["function"] != model.function:  # a new curve and output axis: redraw the background
-            curve.set_ydata(f(x))
-            ax_f.set_ylim(lo, hi)
-            shown["function"] = model.function
-            renderer.invalidate()
+        f, df, ticks = FUNCTIONS[model.function]
+        lo, hi = show_output_axis(ax_f, y_labels, ticks)
+        curve.set_ydata(f(x))
         m, s = model.m, model.s
         fm, slope = float(f(m)), float(df(m))
         tangent.set_ydata(fm + slope * (x - m))  # f(m) + f'(m) (x - m)

@@ -13,15 +13,19 @@ from ..filters.ukf import unscented_1d
 from ..plots import palette
 from ..plots.style import FigureRenderer
 from ._base import Demo, slider
-from .linearization import FUNCTIONS, LinearizationModel, function_panels
+from .linearization import FUNCTIONS, LinearizationModel, function_panels, show_output_axis
 
 N_SAMPLES = 20_000  # fixed standard-normal draws, rescaled by the sliders
 X_RANGE = (-5.0, 5.0)  # the sigma points reach m +- sqrt(1 + lam) s = 2 + 2 * 1.5 at the sliders' extremes
 N_BINS = 60
 DENSITY_CAP = 1.5  # output densities are cut at 1.5 times the sampled peak, inside the panel's 1.6
 ARROW = 0.3  # length of the arrow drawn for a variance of 0: all the probability at one value
-# Output-axis limits for this demo's wider input range (the functions themselves are chapter 7's).
-Y_LIMITS = {"x²": (-1.0, 25.0), "sin x": (-1.5, 1.5), "range √(x² + 1)": (0.0, 5.5)}
+# Output-axis ticks for this demo's wider input range (the functions themselves are chapter 7's).
+Y_TICKS = {
+    "x²": (0.0, 6.0, 12.0, 18.0, 24.0),
+    "sin x": (-1.0, -0.5, 0.0, 0.5, 1.0),
+    "range √(x² + 1)": (1.0, 2.0, 3.0, 4.0, 5.0),
+}
 
 
 class SigmaPointsModel(LinearizationModel):
@@ -64,7 +68,9 @@ def sigma_points(seed: int = 0) -> Demo:
     Demo (an ipywidgets.VBox)
     """
     model = SigmaPointsModel(seed=seed)
-    fig, ax_f, ax_out, ax_in, ax_txt = function_panels(8.4, 6.0, X_RANGE, width_ratio=1.4, height_ratio=1.3)
+    fig, ax_f, ax_out, ax_in, ax_txt, y_labels = function_panels(
+        8.4, 6.0, X_RANGE, Y_TICKS[model.function], width_ratio=1.4, height_ratio=1.3
+    )
 
     x = np.linspace(*X_RANGE, 500)
     (curve,) = ax_f.plot(x, x, color=palette.INK, lw=1.5, label="f(x)")
@@ -91,13 +97,11 @@ def sigma_points(seed: int = 0) -> Demo:
         loc="lower center", bbox_to_anchor=(0.5, 1.0), ncol=3, fontsize=8, frameon=False, handlelength=1.4,
         columnspacing=0.8, handletextpad=0.4,
     )  # fmt: skip
-    # The readout: its labels are static (drawn once), only the numbers are redrawn, in the same monospace grid.
+    # The readout: row names and numbers in one monospace grid (only x² has the row "exact").
     text_style = {"transform": ax_txt.transAxes, "ha": "left", "va": "top", "fontsize": 8.5, "family": "monospace"}
-    labels = ax_txt.text(-0.12, 1.0, "", **text_style)  # row names: set with the function (only x² has "exact")
-    ax_txt.text(-0.12, 1.0, "\n\n\n" + " " * 12 + "mean" + " " * 7 + "var", **text_style)
     info = ax_txt.text(-0.12, 1.0, "", **text_style)
-    renderer = FigureRenderer(fig, [tangent, guides, on_curve, inp, on_input, hist, ukf, ekf, on_output, info])
-    shown = {"function": None}
+    moving = [curve, tangent, guides, on_curve, inp, on_input, hist, ukf, ekf, on_output, info, *y_labels]
+    renderer = FigureRenderer(fig, moving)
 
     def output_density(line, mean, var, top, lo, hi, grid):
         if var > 1e-12 * (hi - lo) ** 2:
@@ -110,14 +114,8 @@ def sigma_points(seed: int = 0) -> Demo:
 
     def draw() -> None:
         f, df, _ = FUNCTIONS[model.function]
-        lo, hi = Y_LIMITS[model.function]
-        if shown["function"] != model.function:  # a new curve and output axis: redraw the background
-            curve.set_ydata(f(x))
-            ax_f.set_ylim(lo, hi)
-            rows = "sampled\nUKF\nEKF" + ("\nexact" if model.exact() is not None else "")
-            labels.set_text("sigma points\nweights\n\n\n" + rows)
-            shown["function"] = model.function
-            renderer.invalidate()
+        lo, hi = show_output_axis(ax_f, y_labels, Y_TICKS[model.function])
+        curve.set_ydata(f(x))
         m, s = model.m, model.s
         fm, slope = float(f(m)), float(df(m))
         tangent.set_ydata(fm + slope * (x - m))  # f(m) + f'(m) (x - m)
@@ -147,20 +145,19 @@ def sigma_points(seed: int = 0) -> Demo:
         mean_y, var_y = float(y.mean()), float(y.var())
         mean_u, var_u = model.ukf()
         mean_e, var_e = model.ekf()
-        moments = [(mean_y, var_y), (mean_u, var_u), (mean_e, var_e)]
+        moments = [("sampled", mean_y, var_y), ("UKF", mean_u, var_u), ("EKF", mean_e, var_e)]
         if model.exact() is not None:
-            moments.append(model.exact())
+            moments.append(("exact", *model.exact()))
         output_density(ukf, mean_u, var_u, top, lo, hi, grid)
         output_density(ekf, mean_e, var_e, top, lo, hi, grid)
         order = [2, 0, 1]  # the points are made as m, m + spread, m - spread; shown left to right
         info.set_text(
-            " " * 12
+            f"{'sigma points':12}"
             + "".join(f"{chi[i]:6.2f}" for i in order)
-            + "\n"
-            + " " * 12
+            + f"\n{'weights':12}"
             + "".join(f"{w[i]:6.2f}" for i in order)
-            + "\n\n\n"
-            + "\n".join(f"{'':7}{mean:9.3f} {var:9.4f}" for mean, var in moments)
+            + f"\n\n{'':12}mean{'':7}var\n"
+            + "\n".join(f"{name:7}{mean:9.3f} {var:9.4f}" for name, mean, var in moments)
         )
 
     caption = (

@@ -29,7 +29,6 @@ from matplotlib.colors import to_rgba
 from matplotlib.lines import Line2D
 from matplotlib.patches import Ellipse, Polygon, Rectangle
 from matplotlib.text import Text
-from matplotlib.ticker import FuncFormatter
 
 from . import palette
 from .artists import (
@@ -41,7 +40,7 @@ from .artists import (
     update_covariance_ellipse,
     update_robot,
 )
-from .style import FIGURE_SPACE, new_figure, nice_limit
+from .style import moving_tick_labels, new_figure, nice_limit, tick_text
 
 MAP_MARGIN = 1.5  # m of room around the landmarks and the true path
 ROBOT_SIZE = 0.45  # m from the robot's centre to its nose
@@ -238,7 +237,6 @@ def update_loop_map(view: LoopMap, run, k: int) -> None:
 
 
 STRIP_TICKS = (-1.0, 0.0, 1.0)  # the strips' y ticks, as fractions of their limit
-MOVING_TICKS = (-1.0, 1.0)  # those whose label changes with the limit (the label 0 never does)
 TICK_WIDTH = 7  # characters a strip's tick label may take, as in "\u22120.0625"
 
 
@@ -252,18 +250,14 @@ def strip_limit(run) -> float:
     return nice_limit(1.15 * max(float(np.abs(error).max()), float(bound.max())))
 
 
-def _tick_text(value: float) -> str:
-    return f"{value:g}".replace("-", "\u2212")  # a true minus sign, as matplotlib's own labels
-
-
 @dataclass(frozen=True)
 class ErrorStrips:
     """What :func:`error_strips` drew, one entry per axis (x, then y).
 
     The strips plot in units of their limit, :func:`strip_limit`: their axes
     always run from -1 to 1, so their ticks and grid never move, and the tick
-    labels at -1 and 1 are text that says what they stand for in metres.  A new
-    run changes that text, never the axes.
+    labels are moving text that says what -1, 0 and 1 stand for in metres.  A
+    new run changes that text, never the axes.
     """
 
     axes: tuple
@@ -273,7 +267,7 @@ class ErrorStrips:
     cursors: tuple[Line2D, ...]  #: the step shown
     blind: tuple[Rectangle, ...]  #: the steps without readings (hidden without dropout)
     kidnap: tuple[Line2D, ...]  #: the kidnap step (hidden without one)
-    labels: tuple[tuple[Text, ...], ...]  #: the y tick labels of each axis at MOVING_TICKS
+    labels: tuple[tuple[Text, ...], ...]  #: the y tick labels of each axis, at STRIP_TICKS
 
     @property
     def moving(self) -> list:
@@ -285,20 +279,6 @@ class ErrorStrips:
 def _band_verts(t, bound) -> np.ndarray:
     """The outline of the band -bound..+bound over t, as one closed polygon."""
     return np.concatenate([np.column_stack([t, bound]), np.column_stack([t[::-1], -bound[::-1]])])
-
-
-def _tick_labels(ax) -> tuple[Text, ...]:
-    """Text where the y tick labels of ``ax`` at MOVING_TICKS stand, in their font, their value left to the caller.
-
-    The axis's own labels there are blanks, padded like its "0" to TICK_WIDTH
-    digits: they keep the room for the text in the layout, which the figure finds once.
-    """
-    ax.set_yticks(STRIP_TICKS)
-    ax.yaxis.set_major_formatter(FuncFormatter(lambda y, _: ("0" if y == 0 else "").rjust(TICK_WIDTH, FIGURE_SPACE)))
-    tick = ax.yaxis.get_major_ticks()[0]
-    transform, va, ha = ax.get_yaxis_text1_transform(tick.get_tick_padding() + tick.get_pad())
-    style = {"fontproperties": tick.label1.get_fontproperties(), "color": tick.label1.get_color()}
-    return tuple(ax.text(0.0, y, "", transform=transform, va=va, ha=ha, **style) for y in MOVING_TICKS)
 
 
 def error_strips(axes, run, k: int | None = None) -> ErrorStrips:
@@ -327,7 +307,7 @@ def error_strips(axes, run, k: int | None = None) -> ErrorStrips:
         ax.set_ylim(-1.0, 1.0)  # in units of the strips' limit
         ax.axhline(0.0, color=palette.INK, lw=0.8, alpha=0.5)
         ax.set_ylabel(f"{name} error (m)")
-        labels = _tick_labels(ax)
+        labels = moving_tick_labels(ax, STRIP_TICKS, TICK_WIDTH)
         blind = Rectangle((t[0], -1e3), 0.0, 2e3, color=palette.TRUTH, alpha=0.25, lw=0, visible=False)
         ax.add_patch(blind)
         band = PolyCollection([], facecolors=palette.ESTIMATE, alpha=0.18, lw=0)
@@ -361,8 +341,8 @@ def update_error_strips(strips: ErrorStrips, run, k: int) -> None:
         strips.future[i].set_data(t[k:], error[k:, i])
         strips.bands[i].set_verts([_band_verts(t, bound[:, i])])
         strips.cursors[i].set_xdata([t[k], t[k]])
-        for label, y in zip(strips.labels[i], MOVING_TICKS, strict=True):
-            label.set_text(_tick_text(y * top))
+        for label, y in zip(strips.labels[i], STRIP_TICKS, strict=True):
+            label.set_text(tick_text(y * top))
         blind = strips.blind[i]
         blind.set_visible(run.dropout is not None)
         if run.dropout is not None:

@@ -143,7 +143,7 @@ def test_picture_shows_the_step():
         assert strips[5].get_xdata()[0] == pytest.approx(run.t[k])
         band = strips[1].get_paths()[0].vertices
         assert band[:, 1].max() == pytest.approx(bound[:, 0].max() / top)  # +2 sqrt(Sig_xx) at its widest
-        assert strips[12].get_text() == f"\u2212{top:g}" and strips[13].get_text() == f"{top:g}"  # x strip's labels
+        assert strips[12].get_text() == f"\u2212{top:g}" and strips[14].get_text() == f"{top:g}"  # x strip's labels
     assert top >= np.abs(error).max() and top >= bound.max()  # the strips hold the whole kidnapped run
 
 

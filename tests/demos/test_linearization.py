@@ -53,7 +53,7 @@ def test_x_squared_at_zero_the_ekf_says_variance_zero():
     assert var_e == 0.0 and mean_e == 0.0
     assert var_y == pytest.approx(2.0, rel=0.1)
     assert mean_y == pytest.approx(1.0, abs=0.05)
-    drawn = np.asarray(demo.renderer.dynamic[4].get_xydata(), float)  # the EKF's spike, drawn finite
+    drawn = np.asarray(demo.renderer.dynamic[5].get_xydata(), float)  # the EKF's spike, drawn finite
     assert np.isfinite(drawn).all()
 
 

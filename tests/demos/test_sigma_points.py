@@ -11,10 +11,11 @@ import pytest
 from matplotlib.collections import LineCollection, PathCollection
 from matplotlib.lines import Line2D
 from matplotlib.patches import Polygon
+from matplotlib.text import Text
 
 import kfcourse as kf
-from kfcourse.demos.linearization import FUNCTIONS
-from kfcourse.demos.sigma_points import ARROW, DENSITY_CAP, X_RANGE, Y_LIMITS
+from kfcourse.demos.linearization import FUNCTIONS, output_limits
+from kfcourse.demos.sigma_points import ARROW, DENSITY_CAP, X_RANGE, Y_TICKS
 
 SQUARE, SINE, RANGE = "x²", "sin x", "range √(x² + 1)"
 TRUE_F = {SQUARE: lambda x: x * x, SINE: np.sin, RANGE: lambda x: np.sqrt(x * x + 1.0)}  # written out again here
@@ -30,14 +31,12 @@ def demo_at(function: str = SQUARE, m: float = 2.0, s: float = 1.0, lam: float =
 
 
 def readout(demo) -> dict[str, tuple[float, float]]:
-    """The (mean, var) rows of the readout the picture shows: static row labels, redrawn numbers
-    ("exact" only where the picture has that row)."""
-    demo.renderer.png()  # the labels are drawn with the background
-    labels = demo.renderer.fig.axes[3].texts[0].get_text().split("\n")
-    numbers = demo.renderer.dynamic[-1].get_text().split("\n")
-    assert len(labels) == len(numbers)
-    names = [name for name in ("sampled", "UKF", "EKF", "exact") if name in labels]
-    return {name: tuple(float(x) for x in numbers[labels.index(name)].split()) for name in names}
+    """The (mean, var) rows of the readout the picture shows ("exact" only where the picture has that row)."""
+    (info,) = demo.renderer.fig.axes[3].texts
+    rows = [line.split() for line in info.get_text().split("\n")]
+    return {
+        row[0]: (float(row[1]), float(row[2])) for row in rows if row and row[0] in ("sampled", "UKF", "EKF", "exact")
+    }
 
 
 def drawn(artist) -> np.ndarray:
@@ -100,15 +99,15 @@ def test_output_legend_sits_above_the_panel_and_densities_stay_inside_it():
     renderer = fig.canvas.get_renderer()
     legend_box = ax_out.get_legend().get_window_extent(renderer)
     assert legend_box.y0 >= ax_out.get_window_extent(renderer).y1 - 1.0  # above the panel
-    ukf_line = demo.renderer.dynamic[6]
+    ukf_line = demo.renderer.dynamic[7]
     dens, _ = ukf_line.get_data()
     assert np.max(dens) == pytest.approx(DENSITY_CAP) and DENSITY_CAP < ax_out.get_xlim()[1]
     demo = demo_at(SQUARE, 0.0, 1.0)
-    for line in demo.renderer.dynamic[6:8]:  # the UKF's and the EKF's: both variance 0 here
+    for line in demo.renderer.dynamic[7:9]:  # the UKF's and the EKF's: both variance 0 here
         dens, _ = line.get_data()
         assert np.max(dens) == pytest.approx(ARROW) and line.get_marker() == ">"
     demo.controls["m"].value = 1.0
-    for line in demo.renderer.dynamic[6:8]:
+    for line in demo.renderer.dynamic[7:9]:
         assert line.get_marker() == "None"
 
 
@@ -126,7 +125,7 @@ def test_ukf_readout_is_unscented_1d_at_the_slider_values(function, m, s, lam):
     assert shown == pytest.approx(expected, abs=1e-3 + 1e-4)  # printed to 3 and 4 decimals
     # The teal curve is N(mean, var) of that readout, drawn relative to the sampled peak and cut at DENSITY_CAP:
     # its peak (the middle of the cut, if cut) sits at the mean.
-    dens, grid = demo.renderer.dynamic[6].get_data()
+    dens, grid = demo.renderer.dynamic[7].get_data()
     if expected[1] > 1e-9:
         assert np.mean(grid[dens == dens.max()]) == pytest.approx(expected[0], abs=2 * (grid[1] - grid[0]))
 
@@ -163,10 +162,12 @@ def test_every_extreme_is_finite(function):
         (c["m"].min, c["m"].max), (c["s"].min, c["s"].max), (c["lam"].min, c["lam"].max)
     ):
         c["m"].value, c["s"].value, c["lam"].value = m, s, lam
-        for artist in demo.renderer.dynamic[:-1]:
+        artists = [a for a in demo.renderer.dynamic if not isinstance(a, Text)]
+        for artist in artists:
             assert np.isfinite(drawn(artist)).all(), (function, m, s, lam, artist)
-        text = demo.renderer.dynamic[-1].get_text().lower()
-        assert "nan" not in text and "inf" not in text
+        texts = [a.get_text().lower() for a in demo.renderer.dynamic if isinstance(a, Text)]  # readout, tick labels
+        assert len(artists) + len(texts) == len(demo.renderer.dynamic) and "sampled" in texts[0]
+        assert not any("nan" in text or "inf" in text for text in texts)
         rows = readout(demo)
         assert all(np.isfinite(v).all() and v[1] >= 0 for v in rows.values())
         chi, _ = demo.model.sigma_points()
@@ -176,10 +177,10 @@ def test_every_extreme_is_finite(function):
 
 def test_every_function_has_output_limits_that_hold_its_curve():
     for name, (f, _df, _) in FUNCTIONS.items():
-        lo, hi = Y_LIMITS[name]
+        lo, hi = output_limits(Y_TICKS[name])
         y = f(np.linspace(*X_RANGE, 200))
         assert lo <= y.min() and y.max() <= hi
-    assert set(Y_LIMITS) == set(FUNCTIONS)
+    assert set(Y_TICKS) == set(FUNCTIONS)
 
 
 def test_bad_lam_is_refused_by_the_model():
