@@ -16,18 +16,16 @@ import json
 import os
 import re
 import shutil
-import signal
 import socket
 import subprocess
 import sys
-import threading
-import time
 import urllib.error
 import urllib.request
 from pathlib import Path
 
 import pytest
 
+from tests.servers import NoRedirect, Served, free_port, get
 from tools import course
 
 ROOT = Path(__file__).resolve().parents[1]
@@ -146,90 +144,6 @@ def test_make_restore_brings_back_one_chapter(tmp_path):
 # --------------------------------------------------------------------------- the real server
 
 
-def free_port() -> int:
-    with socket.socket(socket.AF_INET, socket.SOCK_STREAM) as s:
-        s.bind(("127.0.0.1", 0))
-        return s.getsockname()[1]
-
-
-def get(url: str, headers: dict[str, str] | None = None) -> tuple[int, bytes]:
-    request = urllib.request.Request(url, headers=headers or {})
-    try:
-        with urllib.request.urlopen(request, timeout=30) as response:
-            return response.status, response.read()
-    except urllib.error.HTTPError as error:
-        with error:
-            return error.code, error.read()
-
-
-class NoRedirect(urllib.request.HTTPRedirectHandler):
-    def redirect_request(self, *args, **kwargs):
-        return None
-
-
-class Started:
-    """A make target that serves: its output lines, and the printed address, tried the moment it appears."""
-
-    def __init__(self, command, cwd, env, url_pattern: str):
-        self.lines: list[str] = []
-        self.url: str | None = None
-        self.first_try: tuple[int, bytes] | str | None = None
-        self.pattern = re.compile(url_pattern)
-        self.proc = subprocess.Popen(
-            command,
-            cwd=cwd,
-            env=env,
-            stdin=subprocess.DEVNULL,
-            stdout=subprocess.PIPE,
-            stderr=subprocess.STDOUT,
-            text=True,
-            start_new_session=True,  # its own process group, stopped as a whole
-        )
-        self.reader = threading.Thread(target=self._read, daemon=True)
-        self.reader.start()
-
-    def _read(self) -> None:
-        for line in self.proc.stdout:
-            self.lines.append(line.rstrip("\n"))
-            match = self.pattern.search(line)
-            if match and self.url is None:
-                try:
-                    self.first_try = get(match[0])  # at once: the address must already answer
-                except (urllib.error.URLError, OSError) as error:
-                    self.first_try = f"{type(error).__name__}: {error}"
-                self.url = match[0]
-
-    def wait_for_url(self, timeout_s: float) -> str:
-        deadline = time.monotonic() + timeout_s
-        while self.url is None:
-            if self.proc.poll() is not None:
-                self.reader.join(timeout=5)
-                if self.url is not None:
-                    break
-                pytest.fail(f"exited with {self.proc.returncode} before printing an address:\n{self.tail()}")
-            if time.monotonic() > deadline:
-                pytest.fail(f"no address printed in {timeout_s} s:\n{self.tail()}")
-            time.sleep(0.1)
-        return self.url
-
-    def tail(self, n: int = 40) -> str:
-        return "\n".join(self.lines[-n:])
-
-    def stop(self) -> None:
-        for sig, wait_s in ((signal.SIGTERM, 20), (signal.SIGKILL, 10)):
-            try:
-                os.killpg(self.proc.pid, sig)
-            except ProcessLookupError:
-                break
-            try:
-                self.proc.wait(timeout=wait_s)
-                break
-            except subprocess.TimeoutExpired:
-                continue
-        self.reader.join(timeout=5)
-        self.proc.stdout.close()
-
-
 def listening_addresses(group: int, port: int) -> set[str]:
     """The local addresses the processes of a process group listen on at ``port``."""
     import psutil
@@ -254,11 +168,12 @@ def lab(tmp_path_factory):
     work = base / "my-notebooks"
     port = free_port()
     before = tracked_hashes()
-    started = Started(
+    started = Served(
         [make, "--no-print-directory", *this_venv(), "lab", f"PORT={port}", f"WORK={work}"],
         ROOT,
         make_env(base),
         rf"http://127\.0\.0\.1:{port}/\S*\?token=[0-9a-f]{{16,}}",
+        try_at_once=True,  # the address must answer the moment it is printed
     )
     try:
         url = started.wait_for_url(START_TIMEOUT_S)

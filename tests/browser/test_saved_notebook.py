@@ -23,15 +23,12 @@ import hashlib
 import json
 import os
 import re
-import signal
-import socket
-import subprocess
 import sys
-import threading
-import time
 from pathlib import Path
 
 import pytest
+
+from tests.servers import Served, free_port
 
 try:
     from playwright.sync_api import TimeoutError as PlaywrightTimeoutError
@@ -95,12 +92,6 @@ JS_PICTURE = """async () => {
 # --------------------------------------------------------------------------- the course's server
 
 
-def _free_port() -> int:
-    with socket.socket(socket.AF_INET, socket.SOCK_STREAM) as s:
-        s.bind(("127.0.0.1", 0))
-        return s.getsockname()[1]
-
-
 def _tracked_hashes() -> dict[str, str]:
     return {p.name: hashlib.sha256(p.read_bytes()).hexdigest() for p in sorted((ROOT / "notebooks").glob("*.ipynb"))}
 
@@ -110,7 +101,7 @@ class CourseLab:
 
     def __init__(self, base: Path):
         self.work = base / "my-notebooks"
-        self.port = _free_port()
+        self.port = free_port()
         env = {k: v for k, v in os.environ.items() if k not in ("JUPYTER_TOKEN", "JUPYTER_CONFIG_PATH")}
         for name, sub in [
             ("JUPYTER_RUNTIME_DIR", "runtime"),
@@ -124,54 +115,20 @@ class CourseLab:
         (base / "config" / "jupyter_server_config.json").write_text(
             json.dumps({"LabApp": {"expose_app_in_browser": True}}), encoding="utf-8"
         )
-        self.lines: list[str] = []
-        self.url: str | None = None
-        self.proc = subprocess.Popen(
+        self.server = Served(
             [sys.executable, str(ROOT / "tools" / "course.py"), "lab", f"--port={self.port}", f"--work={self.work}"],
-            cwd=ROOT,
-            env=env,
-            stdin=subprocess.DEVNULL,
-            stdout=subprocess.PIPE,
-            stderr=subprocess.STDOUT,
-            text=True,
-            start_new_session=True,  # its own process group, stopped as a whole
+            ROOT,
+            env,
+            rf"http://127\.0\.0\.1:{self.port}/\S*\?token=[0-9a-f]+",
         )
-        self.reader = threading.Thread(target=self._read, daemon=True)
-        self.reader.start()
-
-    def _read(self) -> None:
-        pattern = re.compile(rf"http://127\.0\.0\.1:{self.port}/\S*\?token=[0-9a-f]+")
-        for line in self.proc.stdout:
-            self.lines.append(line.rstrip("\n"))
-            match = pattern.search(line)
-            if match and self.url is None:
-                self.url = match[0]
 
     def wait(self) -> tuple[str, str]:
         """The server's base address and its token, once the address is printed."""
-        deadline = time.monotonic() + SERVER_START_TIMEOUT_S
-        while self.url is None:
-            if self.proc.poll() is not None or time.monotonic() > deadline:
-                pytest.fail(f"the course's lab server printed no address:\n{self.tail()}", pytrace=False)
-            time.sleep(0.1)
-        return f"http://127.0.0.1:{self.port}/", re.search(r"\?token=([0-9a-f]+)", self.url)[1]
-
-    def tail(self, n: int = 40) -> str:
-        return "\n".join(self.lines[-n:])
+        url = self.server.wait_for_url(SERVER_START_TIMEOUT_S)
+        return f"http://127.0.0.1:{self.port}/", re.search(r"\?token=([0-9a-f]+)", url)[1]
 
     def stop(self) -> None:
-        for sig, wait_s in ((signal.SIGTERM, 20), (signal.SIGKILL, 10)):
-            try:
-                os.killpg(self.proc.pid, sig)
-            except ProcessLookupError:
-                break
-            try:
-                self.proc.wait(timeout=wait_s)
-                break
-            except subprocess.TimeoutExpired:
-                continue
-        self.reader.join(timeout=5)
-        self.proc.stdout.close()
+        self.server.stop()
 
 
 @pytest.fixture

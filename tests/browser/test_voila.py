@@ -11,17 +11,14 @@ from __future__ import annotations
 import os
 import re
 import shutil
-import signal
-import socket
-import subprocess
 import sys
-import threading
-import time
 import urllib.error
 import urllib.request
 from pathlib import Path
 
 import pytest
+
+from tests.servers import NoRedirect, Served, free_port
 
 try:
     from playwright.sync_api import TimeoutError as PlaywrightTimeoutError
@@ -38,12 +35,6 @@ CHANGE_TIMEOUT_MS = 15_000
 
 JS_IMG_READY = """(img) => /^(data|blob):/.test(img.getAttribute('src') || '')
     && img.complete && img.naturalWidth > 0"""
-
-
-def free_port() -> int:
-    with socket.socket(socket.AF_INET, socket.SOCK_STREAM) as s:
-        s.bind(("127.0.0.1", 0))
-        return s.getsockname()[1]
 
 
 @pytest.fixture(scope="module")
@@ -67,50 +58,14 @@ def app(tmp_path_factory, chromium_executable):
         f"CH={CHAPTER}",
         f"APP_PORT={port}",
     ]
-    proc = subprocess.Popen(
-        command,
-        cwd=ROOT,
-        env=env,
-        stdin=subprocess.DEVNULL,
-        stdout=subprocess.PIPE,
-        stderr=subprocess.STDOUT,
-        text=True,
-        start_new_session=True,  # its own process group, stopped as a whole
-    )
-    lines: list[str] = []
-    reader = threading.Thread(target=lambda: lines.extend(line.rstrip("\n") for line in proc.stdout), daemon=True)
-    reader.start()
-    pattern = re.compile(rf"http://127\.0\.0\.1:{port}/\?token=[0-9a-f]{{16,}}")
+    server = Served(command, ROOT, env, rf"http://127\.0\.0\.1:{port}/\?token=[0-9a-f]{{16,}}")
     try:
-        deadline = time.monotonic() + START_TIMEOUT_S
-        while not (found := [m[0] for line in list(lines) if (m := pattern.search(line))]):
-            tail = "\n".join(lines[-40:])
-            if proc.poll() is not None:
-                pytest.fail(f"make app exited with {proc.returncode} before printing an address:\n{tail}")
-            if time.monotonic() > deadline:
-                pytest.fail(f"make app printed no address in {START_TIMEOUT_S} s:\n{tail}")
-            time.sleep(0.1)
-        yield {"url": found[0], "port": port, "lines": lines}
+        yield {"url": server.wait_for_url(START_TIMEOUT_S), "port": port}
     finally:
-        for sig, wait_s in ((signal.SIGTERM, 20), (signal.SIGKILL, 10)):
-            try:
-                os.killpg(proc.pid, sig)
-            except ProcessLookupError:
-                break
-            try:
-                proc.wait(timeout=wait_s)
-                break
-            except subprocess.TimeoutExpired:
-                continue
-        reader.join(timeout=5)
-        proc.stdout.close()
+        server.stop()
 
 
 def test_app_refuses_a_visitor_without_the_token(app):
-    class NoRedirect(urllib.request.HTTPRedirectHandler):
-        def redirect_request(self, *args, **kwargs):
-            return None
-
     opener = urllib.request.build_opener(NoRedirect)
     with pytest.raises(urllib.error.HTTPError) as page:
         opener.open(f"http://127.0.0.1:{app['port']}/", timeout=30)
