@@ -104,12 +104,12 @@ def _readout(model: LoopModel) -> str:
         if rejected:
             sight += f", <span style='color:{palette.MEASUREMENT}'><b>rejects {rejected}</b></span> (outside the gate)"
     before, after = model.areas()
-    shrink = f" (×{after / before:.2f})" if before > 0 else ""
+    shrink = f" (×{after / before:#.2g})" if before > 0 else ""  # two digits however small: ×0.10, ×0.0022
     inside = "inside" if run.inside[k] else "<b>outside</b>"
     kidnapped = " &nbsp; <b>kidnapped</b> at step " + str(model.kidnap) if model.kidnap is not None else ""
     return (
         f"<div style='font-size:13px;line-height:1.5'>step {k}, t = {run.t[k]:.1f} s: {sight}{kidnapped}<br>"
-        f"<span style='color:{palette.ESTIMATE}'>position error {run.error[k]:.2f} m</span>; "
+        f"<span style='color:{palette.ESTIMATE}'>position error {run.error[k]:.3f} m</span>; "
         f"1σ ellipse area <span style='color:{palette.PREDICTION}'>{before:.3g} m² before</span> → "
         f"<span style='color:{palette.ESTIMATE}'>{after:.3g} m² after</span> the readings{shrink}; "
         f"truth {inside} the 3σ ellipse (so far at {model.share_inside():.0%} of the steps)</div>"
@@ -148,8 +148,9 @@ def landmark_loop(seed: int = 0) -> Demo:
         "<b>Landmark loop.</b> Purple squares: landmarks. Grey: true path and robot. Teal: the filter's estimate, "
         "trail, 2σ ellipse and beams to the readings it uses; dashed orange: readings it rejects (over 4σ off); "
         "dashed purple: the 2σ ellipse before this step's readings. Strips: x and y error (truth − estimate) in the "
-        "filter's own ±2σ band. <i>process noise</i> / <i>measurement noise</i> scale the odometry noise and "
-        "R<sub>t</sub> (trust in odometry) / the reading noise and Q (trust in the sensor); <i>sensor dropout</i> "
+        "filter's own ±2σ band, faint after the step shown; grey: the blind steps; dotted: the kidnap. "
+        "<i>process noise</i> / <i>measurement noise</i> scale the odometry noise and R<sub>t</sub> (trust in "
+        "odometry) / the reading noise and Q (trust in the sensor); <i>sensor dropout</i> "
         f"blinds steps {DROPOUT[0]}–{DROPOUT[1] - 1}; <i>filter</i>: EKF or UKF on the same noise; <i>Kidnap</i> moves "
         "the true robot half a lap on at this step."
     )

@@ -40,7 +40,7 @@ from .artists import (
     update_covariance_ellipse,
     update_robot,
 )
-from .style import moving_tick_labels, new_figure, nice_limit, tick_text
+from .style import moving_tick_labels, new_figure, tick_text
 
 MAP_MARGIN = 1.5  # m of room around the landmarks and the true path
 ROBOT_SIZE = 0.45  # m from the robot's centre to its nose
@@ -237,17 +237,21 @@ def update_loop_map(view: LoopMap, run, k: int) -> None:
 
 
 STRIP_TICKS = (-1.0, 0.0, 1.0)  # the strips' y ticks, as fractions of their limit
-TICK_WIDTH = 7  # characters a strip's tick label may take, as in "\u22120.0625"
+TICK_WIDTH = 6  # characters a strip's tick label may take, as in "\u22120.005"
 
 
 def strip_limit(run) -> float:
-    """The strips' y limit (m): the next power of two above 1.15 times the largest error or bound of ``run``.
+    """The strips' y limit (m): the first of 1, 2, 5, 10, 20, ... times a power of ten (0.01, 0.02, 0.05,
+    0.1, ...) at or above 1.15 times the largest error or bound of ``run``.
 
-    A power of two changes rarely as the run changes, so the tick labels keep
-    their values while a student drags a slider a little.  Introduced in chapter 10.
+    Such a limit changes rarely as the run changes, so the tick labels keep their
+    values while a student drags a slider a little, and it reads as a round number.
+    Introduced in chapter 10.
     """
     error, bound = position_errors(run)
-    return nice_limit(1.15 * max(float(np.abs(error).max()), float(bound.max())))
+    value = 1.15 * max(float(np.abs(error).max()), float(bound.max()), 1e-12)
+    decade = 10.0 ** np.floor(np.log10(value))
+    return next(float(step * decade) for step in (1.0, 2.0, 5.0, 10.0) if step * decade >= value)
 
 
 @dataclass(frozen=True)

@@ -220,14 +220,16 @@ def try_3_push_the_process_noise_until_it_breaks(demo):
     assert m.motion_noise == pytest.approx(10.0) and m.dropout
     run = m.run
     demo.controls["frame"].value = DROPOUT[1] - 1
-    assert round(run.area[DROPOUT[1] - 1], 1) == 5.4 and round(run.area[DROPOUT[0] - 1], 3) == 0.017
-    assert round(run.error[DROPOUT[1] - 1], 1) == 1.7  # "1.7 m off"
+    assert round(run.area[DROPOUT[1] - 2], 1) == 5.7 and round(run.area[DROPOUT[0] - 1], 3) == 0.017  # "5.7 by 68"
+    assert run.area[DROPOUT[1] - 2] == run.area[DROPOUT[0] : DROPOUT[1]].max()  # its largest blind
+    assert (np.diff(run.area[DROPOUT[0] - 1 : DROPOUT[1]]) < 0).any()  # "not quite at every step"
+    assert round(run.error[DROPOUT[1] - 1], 1) == 1.7  # "by step 69 ... 1.7 m off"
     e = run.truth[:, :2] - run.mu[:, :2]
     d2 = np.einsum("ti,tij,tj->t", e, np.linalg.inv(run.Sig[:, :2, :2]), e)
     assert (d2[DROPOUT[0] : DROPOUT[1]] <= 4.0).all()  # "the grey robot stays inside the teal (2-sigma) ellipse"
     demo.controls["frame"].value = DROPOUT[1]
     before, after = m.areas()
-    assert round(before, 1) == 5.8 and round(after, 3) == 0.013 and after / before < 0.005
+    assert round(before, 1) == 5.8 and round(after, 3) == 0.013 and "(×0.0022)" in readout(demo)
     assert round(run.error[DROPOUT[1]], 2) == 0.39
     k = DROPOUT[1]
     assert (run.used[k].sum(), run.rejected[k].sum()) == (2, 1)  # "one beam turns orange"
@@ -242,12 +244,16 @@ def try_4_precise_sensor_after_a_blind_stretch_ekf_against_ukf(demo):
     m = demo.model
     demo.controls["sensor"].value = demo.controls["sensor"].base ** demo.controls["sensor"].min
     assert m.sensor_noise == pytest.approx(0.1) and m.motion_noise == pytest.approx(10.0) and m.dropout
+    demo.controls["frame"].value = DROPOUT[0] - 1
+    assert "so far at 57% of the steps" in readout(demo)  # "at step 39 ... inside at only 57 %"
     k = DROPOUT[1]
     demo.controls["frame"].value = k
     run = m.run
     assert m.filter == "ekf" and (run.used[k].sum(), run.rejected[k].sum()) == (1, 2)
     assert "rejects 2" in readout(demo) and "<b>outside</b>" in readout(demo)
     assert round(run.error[k], 2) == 1.31 and round(run.area[k], 3) == 0.027
+    width, length = 2 * 2 * np.sqrt(np.linalg.eigvalsh(run.Sig[k, :2, :2]))  # the 2-sigma ellipse's axes
+    assert (round(width, 2), round(length, 1)) == (0.04, 3.5)  # "a needle (4 cm by 3.5 m at 2σ)"
     assert run.error[k : k + 9].min() > 1.0 and not run.inside[k : k + 9].any()  # "over a metre off, outside"
     assert round(run.error[k + 9], 2) == 0.17  # "until step 79"
     demo.controls["filter"].value = "UKF"
@@ -272,6 +278,10 @@ def try_5_kidnap_the_filter_stays_confidently_wrong(demo):
     assert np.linalg.norm(run.truth[60, :2] - run.mu[60, :2]) > 4.0  # the grey robot jumps to the far side
     after = slice(60, None)
     assert run.rejected[after].sum() > 2 * run.used[after].sum()  # "most beams turn orange"
+    centre = int(np.flatnonzero((run.landmarks == [0.0, 2.5]).all(axis=1))[0])
+    assert np.flatnonzero(run.used[after].any(axis=0)).tolist() == [centre]  # "one stays teal": the centre landmark
+    mirror = 2 * np.array([0.0, 2.5]) - run.landmarks  # the map, turned half a turn about the centre landmark
+    assert {tuple(p) for p in mirror.tolist()} == {tuple(p) for p in run.landmarks.tolist()}  # "symmetric"
     assert (round(run.error[after].min()), round(run.error[after].max())) == (5, 9)  # "5 to 9 m off"
     longest = 2 * 2 * np.sqrt(np.linalg.eigvalsh(run.Sig[after, :2, :2]).max())  # the 2-sigma ellipse's long axis
     assert longest < 1.0  # "its 2-sigma ellipse stays under a metre across"

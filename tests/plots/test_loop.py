@@ -69,7 +69,9 @@ def test_strips_plot_in_units_of_their_limit_and_label_it(run):
     strips = error_strips(strip_axes, run, 100)
     error, bound = kf.plots.position_errors(run)
     top = strip_limit(run)
-    assert top >= 1.15 * max(np.abs(error).max(), bound.max()) and np.log2(top) == round(np.log2(top))
+    assert top >= 1.15 * max(np.abs(error).max(), bound.max())
+    decade = 10.0 ** np.floor(np.log10(top))
+    assert round(top / decade, 9) in (1.0, 2.0, 5.0) and top / 2.5 < 1.15 * max(np.abs(error).max(), bound.max())
     for i, ax in enumerate(strip_axes):
         assert ax.get_ylim() == (-1.0, 1.0)
         np.testing.assert_allclose(strips.past[i].get_xydata()[-1], [run.t[100], error[100, i] / top])
