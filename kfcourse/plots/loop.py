@@ -248,7 +248,11 @@ def strip_limit(run) -> float:
     values while a student drags a slider a little, and it reads as a round number.
     Introduced in chapter 10.
     """
-    error, bound = position_errors(run)
+    return _limit(*position_errors(run))
+
+
+def _limit(error, bound) -> float:
+    """:func:`strip_limit` of the errors and bounds :func:`position_errors` gave."""
     value = 1.15 * max(float(np.abs(error).max()), float(bound.max()), 1e-12)
     decade = 10.0 ** np.floor(np.log10(value))
     return next(float(step * decade) for step in (1.0, 2.0, 5.0, 10.0) if step * decade >= value)
@@ -337,7 +341,7 @@ def update_error_strips(strips: ErrorStrips, run, k: int) -> None:
     k = _step(run, k)
     t = np.asarray(run.t, float)
     error, bound = position_errors(run)
-    top = strip_limit(run)
+    top = _limit(error, bound)
     error, bound = error / top, bound / top  # in units of the limit
     k0 = _kidnap_step(run)
     for i in range(len(strips.axes)):
