@@ -2,6 +2,7 @@
 
 from __future__ import annotations
 
+import re
 import shutil
 import subprocess
 import sys
@@ -13,9 +14,16 @@ import pytest
 
 ROOT = Path(__file__).resolve().parents[1]
 
+# Each case is a notebook of ``(source, stored_output)`` cells and whether nbval passes it.
+CASES = {
+    "clean": ([("print(1 + 1)", None)], True),
+    "warning": ([("import warnings\nwarnings.warn('careful')", None)], False),
+    "number-kept": ([("# NBVAL_CHECK_OUTPUT\nprint(f'{6 / 7:.3f}')", "0.857\n")], True),
+    "number-changed": ([("# NBVAL_CHECK_OUTPUT\nprint(f'{6 / 7:.3f}')", "0.858\n")], False),
+}
 
-def run_nbval(cells) -> subprocess.CompletedProcess:
-    """Run nbval, as `make test` does, on a notebook made of ``(source, stored_output)`` cells."""
+
+def notebook(cells) -> nbformat.NotebookNode:
     nb = nbformat.v4.new_notebook()
     for count, (source, stored) in enumerate(cells, start=1):
         cell = nbformat.v4.new_code_cell(source)
@@ -23,31 +31,30 @@ def run_nbval(cells) -> subprocess.CompletedProcess:
             cell.execution_count = count
             cell.outputs = [nbformat.v4.new_output("stream", name="stdout", text=stored)]
         nb.cells.append(cell)
+    return nb
+
+
+@pytest.fixture(scope="module")
+def nbval_run() -> tuple[dict[str, list[str]], str]:
+    """Run nbval once, as `make test` does, on one notebook per case: each case's cell outcomes,
+    and what nbval printed."""
     folder = Path(tempfile.mkdtemp(prefix=".probe-", dir=ROOT / "tests"))  # under the root conftest
     try:
-        nbformat.write(nb, folder / "probe.ipynb")
-        command = ["pytest", "--nbval-lax", "--nbval-current-env", "-q", "-p", "no:cacheprovider"]
-        return subprocess.run(
-            [sys.executable, "-m", *command, str(folder / "probe.ipynb")],
-            cwd=ROOT,
-            capture_output=True,
-            text=True,
-            timeout=120,
-        )
+        for case, (cells, _) in CASES.items():
+            nbformat.write(notebook(cells), folder / f"{case}.ipynb")
+        command = ["pytest", "--nbval-lax", "--nbval-current-env", "-q", "-rA", "-p", "no:cacheprovider", str(folder)]
+        result = subprocess.run([sys.executable, "-m", *command], cwd=ROOT, capture_output=True, text=True, timeout=120)
     finally:
         shutil.rmtree(folder)
+    found: dict[str, list[str]] = {}
+    for outcome, case in re.findall(r"^(PASSED|FAILED|ERROR) \S*/([\w-]+)\.ipynb::Cell \d+", result.stdout, re.M):
+        found.setdefault(case, []).append(outcome)
+    return found, result.stdout
 
 
-@pytest.mark.parametrize(
-    ("cells", "passes"),
-    [
-        ([("print(1 + 1)", None)], True),
-        ([("import warnings\nwarnings.warn('careful')", None)], False),
-        ([("# NBVAL_CHECK_OUTPUT\nprint(f'{6 / 7:.3f}')", "0.857\n")], True),
-        ([("# NBVAL_CHECK_OUTPUT\nprint(f'{6 / 7:.3f}')", "0.858\n")], False),
-    ],
-    ids=["clean", "warning", "number-kept", "number-changed"],
-)
-def test_nbval_guard(cells, passes):
-    result = run_nbval(cells)
-    assert (result.returncode == 0) == passes, result.stdout[-2000:]
+@pytest.mark.parametrize("case", CASES)
+def test_nbval_guard(nbval_run, case):
+    (found, printed), (cells, passes) = nbval_run, CASES[case]
+    seen = found.get(case, [])
+    assert len(seen) == len(cells), printed[-2000:]  # every cell was run and reported
+    assert all(o == "PASSED" for o in seen) == passes, printed[-2000:]
