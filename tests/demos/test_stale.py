@@ -19,14 +19,6 @@ DEMOS = kf.demos.__all__  # every demo the course ships
 SLIDERS = (widgets.IntSlider, widgets.FloatSlider, widgets.FloatLogSlider)
 
 
-def make(name: str):
-    """The demo, its pictures rendered one pixel per CSS pixel: whether an artist is stale does not
-    depend on the pixel count, and a full redraw at the demos' double density costs four times as much."""
-    demo = getattr(kf.demos, name)(seed=0)
-    demo.renderer.set_pixel_width(demo.display_width)
-    return demo
-
-
 def assert_not_stale(demo, what: str) -> None:
     # The picture shown, blitted again and kept lossless (the demo's image holds it as a JPEG),
     # as the renderer's RGB pixels: encoding them as a PNG would only double the test's time.
@@ -71,7 +63,7 @@ def drive(demo):
 
 @pytest.mark.parametrize("name", DEMOS)
 def test_blitted_picture_equals_full_redraw(name):
-    demo = make(name)
+    demo = getattr(kf.demos, name)(seed=0)
     assert_not_stale(demo, "the first picture")
     changes = 0
     for what in drive(demo):
@@ -83,7 +75,7 @@ def test_blitted_picture_equals_full_redraw(name):
 @pytest.mark.parametrize("name", ["hallway", "step_through"])
 def test_buttons_after_slider_extremes(name):
     """Buttons pressed with the sliders at their ends: the belief jumps far, the axes rescale."""
-    demo = make(name)
+    demo = getattr(kf.demos, name)(seed=0)
     for key, control in demo.controls.items():
         if isinstance(control, SLIDERS):
             for value in slider_values(control)[:2]:
