@@ -11,8 +11,7 @@ import kfcourse as kf
 def overlaps(demo) -> list[str]:
     """Which text block overlaps which belief bar, in the picture as drawn."""
     fig = demo.renderer.fig
-    fig.canvas.draw()
-    renderer = fig.canvas.get_renderer()
+    renderer = fig.canvas.get_renderer()  # the demo has drawn the picture: extents need no new draw
     ax = fig.axes[0]
     texts = [t for t in ax.texts if t.get_text()]
     assert len(texts) == 2  # the settings and the status line
