@@ -158,6 +158,16 @@ def _positive_definite(a: np.ndarray) -> bool:
     return True
 
 
+def _semi_definite(M: np.ndarray, blocks: list[np.ndarray]) -> bool:
+    """Whether the symmetric block-diagonal ``M`` is positive semi-definite up to rounding in
+    each of its ``blocks``: positive definite (the quick test), or no eigenvalue below minus
+    the rounding tolerance of the block whose largest variance is the smallest."""
+    if _positive_definite(M):
+        return True
+    smallest = min(max(a.diagonal().tolist()) for a in blocks)
+    return bool(np.linalg.eigvalsh(M)[0] >= -_PSD_RTOL * smallest)
+
+
 def _covariance_alone(a: np.ndarray, name: str) -> None:
     """Check one finite square matrix: symmetric and positive semi-definite, each up to rounding."""
     if not _exactly_symmetric(a) and np.abs(a - a.T).max() > _SYM_RTOL * np.abs(a).max():
@@ -196,9 +206,11 @@ def covariances(*named: tuple[object, str, int | None]) -> list[np.ndarray]:
     and its eigenvalues are those of all the blocks together, so :math:`M` is
     positive definite exactly when every block is -- which one Cholesky
     factorisation of :math:`M` tells, as it exists only for a positive definite
-    matrix.  Only when that fails is each matrix checked on its own, to name the
-    one at fault or to accept it: a singular (semi-definite) covariance is
-    allowed, and so are an asymmetry or a negative eigenvalue of rounding size.
+    matrix.  A singular (semi-definite) covariance is allowed, such as the process
+    noise of a constant-velocity model, and so is a negative eigenvalue of rounding
+    size: when the factorisation fails, the lowest eigenvalue of :math:`M` tells.
+    Only when that fails too is each matrix checked on its own, to name the one at
+    fault or to accept it (an asymmetry of rounding size is allowed as well).
 
     Returns
     -------
@@ -210,7 +222,7 @@ def covariances(*named: tuple[object, str, int | None]) -> list[np.ndarray]:
         a = _floats(x, name)
         mats.append(a if a.shape == (n, n) and n else _square(a, name, n))  # the usual shape told first
     M = block_diagonal(mats)
-    if not (all_finite(M) and _exactly_symmetric(M) and _positive_definite(M)):
+    if not (all_finite(M) and _exactly_symmetric(M) and _semi_definite(M, mats)):
         for a, (x, name, _) in zip(mats, named, strict=True):
             finite(x, name)  # raises if this one holds a NaN or inf
             _covariance_alone(a, name)

@@ -1,7 +1,8 @@
 """The input checks' own paths: one look at several covariances, and finiteness by sums.
 
 ``covariances`` checks finiteness, symmetry and definiteness of all its matrices on one
-block-diagonal matrix, and names the matrix at fault only after that look fails;
+block-diagonal matrix (a Cholesky factorisation, then the lowest eigenvalue for a singular
+one), and names the matrix at fault only after that look fails;
 ``all_finite`` sums a short array in Python and a long one's squares in numpy, and looks
 at each element when a sum of finite numbers overflows.
 """
@@ -46,6 +47,16 @@ def test_semi_definite_and_rounding_asymmetric_covariances_pass():
     skewed = np.array([[2.0, 1.0], [1.0 + 1e-12, 2.0]])  # asymmetric by rounding only
     out = v.covariances((singular, "Sig", 2), (skewed, "R", 2))
     assert out[0][1, 1] == 0.0 and out[1][1, 0] == 1.0 + 1e-12
+
+
+def test_a_small_covariance_is_judged_on_its_own_scale_beside_a_large_one():
+    # a singular process noise (a constant-velocity model's) passes beside a covariance a million times larger
+    Gam = np.array([[0.5], [1.0]])
+    R = v.covariances((1e6 * I2, "Sig", 2), (Gam @ Gam.T, "R", 2))[1]
+    assert R[1, 1] == 1.0
+    # a negative eigenvalue of 1e-4 is no rounding error for R, even though it is for Sig's 1e6
+    with pytest.raises(ValueError, match=r"^R must be positive semi-definite"):
+        v.covariances((1e6 * I2, "Sig", 2), (np.diag([1.0, -1e-4]), "R", 2))
 
 
 @pytest.mark.parametrize("size", [3, 16, 17, 500])
