@@ -20,9 +20,9 @@ SLIDERS = (widgets.IntSlider, widgets.FloatSlider, widgets.FloatLogSlider)
 
 
 def assert_not_stale(demo, what: str) -> None:
-    # The picture shown, blitted again and kept lossless (the demo's image holds it as a JPEG),
-    # as the renderer's RGB pixels: encoding them as a PNG would only double the test's time.
-    shown = np.asarray(demo.renderer.image())
+    # The picture shown, lossless: the canvas the demo's JPEG was just encoded from, as RGB pixels
+    # (encoding them as a PNG would only double the test's time).
+    shown = np.asarray(demo.renderer.fig.canvas.buffer_rgba())[..., :3].copy()
     demo.renderer.invalidate()
     full = np.asarray(demo.renderer.image())
     assert shown.shape == full.shape, what
