@@ -4,10 +4,12 @@
 lab server over a saved copy (tests/browser/test_saved_notebook.py) are each started as a
 :class:`Served` command: it runs in its own process group, its output is read line by
 line, the address it prints is picked out, and the whole group is stopped at the end.
+A lab the course starts must leave the tracked notebooks as they are (:func:`tracked_hashes`).
 """
 
 from __future__ import annotations
 
+import hashlib
 import os
 import re
 import signal
@@ -17,8 +19,18 @@ import threading
 import time
 import urllib.error
 import urllib.request
+from pathlib import Path
 
 import pytest
+
+from tools import course
+
+ROOT = Path(__file__).resolve().parents[1]
+
+
+def tracked_hashes() -> dict[str, str]:
+    """Each tracked notebook's SHA-256, by file name."""
+    return {p.name: hashlib.sha256(p.read_bytes()).hexdigest() for p in course.notebooks(ROOT / "notebooks")}
 
 
 def free_port() -> int:

@@ -11,7 +11,6 @@ saving a notebook (what autosave does) writes the working copy, never the tracke
 
 from __future__ import annotations
 
-import hashlib
 import json
 import os
 import re
@@ -25,7 +24,7 @@ from pathlib import Path
 
 import pytest
 
-from tests.servers import NoRedirect, Served, free_port, get
+from tests.servers import NoRedirect, Served, free_port, get, tracked_hashes
 from tools import course
 
 ROOT = Path(__file__).resolve().parents[1]
@@ -116,10 +115,6 @@ def this_venv() -> list[str]:
     """make variables that run the targets in this test's own environment, never rebuilding it."""
     venv = Path(sys.prefix)
     return [f"--assume-old={venv / '.kfcourse-installed'}", f"VENV={venv}"]
-
-
-def tracked_hashes() -> dict[str, str]:
-    return {p.name: hashlib.sha256(p.read_bytes()).hexdigest() for p in course.notebooks(ROOT / "notebooks")}
 
 
 def test_make_restore_brings_back_one_chapter(tmp_path):

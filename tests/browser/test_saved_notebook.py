@@ -19,7 +19,6 @@ and saving the reopened notebook before the demo is run again drops the saved st
 
 from __future__ import annotations
 
-import hashlib
 import json
 import os
 import re
@@ -28,7 +27,7 @@ from pathlib import Path
 
 import pytest
 
-from tests.servers import Served, free_port
+from tests.servers import Served, free_port, tracked_hashes
 
 try:
     from playwright.sync_api import TimeoutError as PlaywrightTimeoutError
@@ -92,10 +91,6 @@ JS_PICTURE = """async () => {
 # --------------------------------------------------------------------------- the course's server
 
 
-def _tracked_hashes() -> dict[str, str]:
-    return {p.name: hashlib.sha256(p.read_bytes()).hexdigest() for p in sorted((ROOT / "notebooks").glob("*.ipynb"))}
-
-
 class CourseLab:
     """``tools/course.py lab`` on a free port over ``base/my-notebooks``; its printed address, with the token."""
 
@@ -133,13 +128,13 @@ class CourseLab:
 
 @pytest.fixture
 def course_lab(tmp_path, chromium_executable):
-    before = _tracked_hashes()
+    before = tracked_hashes()
     lab = CourseLab(tmp_path)
     try:
         yield lab
     finally:
         lab.stop()
-    assert _tracked_hashes() == before, "the tracked notebooks changed while the course was used"
+    assert tracked_hashes() == before, "the tracked notebooks changed while the course was used"
 
 
 # --------------------------------------------------------------------------- the test
