@@ -40,9 +40,20 @@ app: $(STAMP)
 restore:
 	@$(PYTHON) tools/course.py restore --work '$(WORK)' --chapter '$(CH)'
 
+# The parts that state facts of simulated runs: the notebooks and the run-fact tests. Besides
+# the full suite, they run under numpy's lower SIMD levels (AVX2, then the x86-64-v2 baseline:
+# another CPU's rounding; disabling a feature the CPU lacks changes nothing) and with every
+# noise draw scaled by 1 +- 1e-12 (tests/rounding.py): what they state must hold in every run.
+FACTS    := tests/sim tests/demos tests/plots tests/test_rounding.py notebooks
+NO_AVX512 := AVX512_ICL AVX512_SPR X86_V4
+UNIT     := $(BIN)/pytest -m "not browser" -n 2 --dist loadfile --nbval-lax --nbval-current-env --nbval-cell-timeout=120
+
 test: $(STAMP) lint
-	$(BIN)/pytest -m "not browser" -n 2 --dist loadfile --nbval-lax --nbval-current-env \
-	  --nbval-cell-timeout=120 tests notebooks
+	$(UNIT) tests notebooks
+	NPY_DISABLE_CPU_FEATURES="$(NO_AVX512)" $(UNIT) $(FACTS)
+	NPY_DISABLE_CPU_FEATURES="$(NO_AVX512) X86_V3" $(UNIT) $(FACTS)
+	$(UNIT) --perturb=1e-12 $(FACTS)
+	$(UNIT) --perturb=-1e-12 $(FACTS)
 	$(BIN)/pytest -m browser tests/browser
 
 lint: $(STAMP)

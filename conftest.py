@@ -3,11 +3,42 @@
 A notebook cell run by nbval fails when it writes to stderr: that is where a
 warning (or any other complaint) from a cell ends up, and nbval alone would let
 it pass in a cell whose output is not compared.
+
+``--perturb=SIZE`` scales every normal draw by ``1 + SIZE``, in the tests and in the
+notebook kernels (``tests/rounding.py``): a run whose stated facts change under a
+perturbation of 1e-12 states digits of this machine's rounding, not facts.
 """
 
 from __future__ import annotations
 
+import os
+import tempfile
+from pathlib import Path
+
 import pytest
+
+
+def pytest_addoption(parser):
+    parser.addoption(
+        "--perturb",
+        type=float,
+        default=None,
+        metavar="SIZE",
+        help="scale every normal draw by 1 + SIZE, in the tests and the notebook kernels (tests/rounding.py)",
+    )
+
+
+def pytest_configure(config):
+    size = config.getoption("--perturb")
+    if size is None:
+        return
+    from tests import rounding
+
+    rounding.perturb_noise(size)
+    startup = Path(tempfile.mkdtemp(prefix="kfcourse-ipython-")) / "profile_default" / "startup"
+    startup.mkdir(parents=True)
+    (startup / "00-perturb.py").write_text(rounding.startup_script(size))
+    os.environ["IPYTHONDIR"] = str(startup.parents[1])  # the notebook kernels nbval starts read it
 
 
 @pytest.hookimpl(wrapper=True)

@@ -24,7 +24,7 @@ def test_chart_draws_both_runs(runs):
         assert len(est) == 1 and np.allclose(est[0].get_xydata(), run.mu[:, :2])
         ellipses = [p for p in ax.patches if isinstance(p, Ellipse)]
         assert len(ellipses) == len(range(0, run.t.size, 12))
-        assert f"{run.error[-1]:.2f} m" in ax.get_title()
+        assert f"largest error {run.error.max():.1f} m" in ax.get_title()  # not the final error: chaotic
         for p in ellipses:
             assert np.isfinite(p.get_verts()).all()
     errors = [np.asarray(line.get_ydata()) for line in ax_e.get_lines()]

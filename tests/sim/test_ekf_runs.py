@@ -18,8 +18,11 @@ def test_right_jacobian_tracks_and_is_honest(seed):
 
 @pytest.mark.parametrize("seed", [0, 1, 2])
 def test_flipped_bearing_row_diverges(seed):
+    # A diverged run's final error depends on the last bit of a sine (numpy's SIMD path): it is
+    # no fact. When the error passes 1 m, how large it gets and how often the truth is outside are.
     run = kf.sim.run_ekf(flipped=True, seed=seed)
-    assert run.final_error > 0.5  # m
+    assert run.t[np.argmax(run.error > 1.0)] <= 5.0  # s: a metre off within the first 5 s
+    assert np.mean(run.error > 0.5) > 0.8  # m: more than half a metre off at most steps
     assert run.error.max() > 3.0
     assert run.share_inside < 0.2  # the truth leaves the 3-sigma ellipse
 
