@@ -26,6 +26,8 @@ import pytest
 from tools import course
 
 ROOT = Path(__file__).resolve().parents[1]
+# What a student's terminal must not show: a warning, an error, an untrusted notebook.
+ALARMING = re.compile(r"warn|error|deprecat|not trusted|\[W |\[E ", re.I)
 
 
 def tracked_hashes() -> dict[str, str]:

@@ -7,10 +7,14 @@ checked as a student meets it: the address is printed only once the server answe
 holds a token and the server refuses requests without it, it listens on 127.0.0.1 only,
 JupyterLab's news pop-up is off, widget state is saved with a notebook by default, and
 saving a notebook (what autosave does) writes the working copy, never the tracked notebooks.
+Its terminal shows no warning while a kernel starts and a chapter opens.  On a port that
+another server already holds, `make lab` and `make app` refuse to start, say how to pick
+another port, and print no address.
 """
 
 from __future__ import annotations
 
+import http.server
 import json
 import os
 import re
@@ -18,13 +22,18 @@ import shutil
 import socket
 import subprocess
 import sys
+import threading
+import time
 import urllib.error
+import urllib.parse
 import urllib.request
+import uuid
+from contextlib import contextmanager
 from pathlib import Path
 
 import pytest
 
-from tests.servers import NoRedirect, Served, free_port, get, tracked_hashes
+from tests.servers import ALARMING, NoRedirect, Served, free_port, get, tracked_hashes
 from tools import course
 
 ROOT = Path(__file__).resolve().parents[1]
@@ -173,11 +182,62 @@ def lab(tmp_path_factory):
     try:
         url = started.wait_for_url(START_TIMEOUT_S)
         token = re.search(r"\?token=([0-9a-f]+)", url)[1]
-        yield {"started": started, "url": url, "token": token, "port": port, "work": work, "before": before}
+        printed = open_a_chapter(f"http://127.0.0.1:{port}/", token)
+        shown = list(started.lines)  # the terminal after a kernel started and a chapter opened
+        yield {
+            "started": started,
+            "url": url,
+            "token": token,
+            "port": port,
+            "work": work,
+            "before": before,
+            "printed": printed,
+            "shown": shown,
+        }
     finally:
         started.stop()
     with socket.socket(socket.AF_INET, socket.SOCK_STREAM) as s:
         assert s.connect_ex(("127.0.0.1", port)) != 0, "the server still answers after `make lab` was stopped"
+
+
+def open_a_chapter(base: str, token: str) -> str:
+    """What a student does first: open a chapter, start its kernel and run a cell. Returns what the cell printed."""
+    import websocket  # websocket-client, of the pinned set (jupyter_server's)
+
+    auth = {"Authorization": f"token {token}", "Content-Type": "application/json"}
+    assert get(f"{base}api/contents/03_kalman_1d.ipynb?content=1", auth)[0] == 200
+    request = urllib.request.Request(f"{base}api/kernels", data=b'{"name": "python3"}', method="POST", headers=auth)
+    with urllib.request.urlopen(request, timeout=30) as response:
+        kernel = json.loads(response.read())["id"]
+    channels = base.replace("http://", "ws://") + f"api/kernels/{kernel}/channels?session_id={uuid.uuid4().hex}"
+    ws = websocket.create_connection(channels, header=[f"Authorization: token {token}"], timeout=60)
+    try:
+        msg_id = uuid.uuid4().hex
+        header = {"msg_id": msg_id, "session": uuid.uuid4().hex, "username": "student", "version": "5.3"}
+        content = {"code": "print(6 * 7)", "silent": False, "store_history": False, "user_expressions": {}}
+        request = {"header": {**header, "msg_type": "execute_request"}, "parent_header": {}, "metadata": {}}
+        ws.send(json.dumps({**request, "content": content, "channel": "shell"}))
+        printed = ""
+        while True:  # until the kernel is idle again after the cell
+            msg = json.loads(ws.recv())
+            if msg.get("parent_header", {}).get("msg_id") != msg_id:
+                continue
+            if msg["msg_type"] == "stream":
+                printed += msg["content"]["text"]
+            if msg["msg_type"] == "status" and msg["content"]["execution_state"] == "idle":
+                break
+    finally:
+        ws.close()
+    time.sleep(1.0)  # for anything the server or the kernel would still write
+    request = urllib.request.Request(f"{base}api/kernels/{kernel}", method="DELETE", headers=auth)
+    urllib.request.urlopen(request, timeout=30).close()
+    return printed
+
+
+def test_lab_terminal_shows_no_warning(lab):
+    assert lab["printed"] == "42\n", "the kernel did not run a cell"
+    alarming = [line for line in lab["shown"] if ALARMING.search(line)]
+    assert not alarming, "the student's terminal shows:\n" + "\n".join(alarming)
 
 
 def test_lab_prints_the_address_once_the_server_answers(lab):
@@ -263,3 +323,68 @@ def test_binder_gets_the_same_jupyterlab_settings():
     assert sorted(p.name for p in labconfig.iterdir()) == ["default_setting_overrides.json", "page_config.json"]
     for path in labconfig.iterdir():
         assert f"cp binder/jupyter-config/labconfig/{path.name}" in post
+
+
+# --------------------------------------------------------------------------- someone else's server
+
+
+class Foreign(http.server.BaseHTTPRequestHandler):
+    """A server of someone else's. ``everyone``: its login lets any token in; else it answers 200 to all."""
+
+    everyone = False
+
+    def do_GET(self):
+        url = urllib.parse.urlsplit(self.path)
+        nxt = urllib.parse.parse_qs(url.query).get("next")
+        if self.everyone and url.path == "/login" and nxt:
+            self.send_response(302)
+            self.send_header("Location", nxt[0])
+        else:
+            self.send_response(200)
+        self.end_headers()
+        self.wfile.write(b"someone else's page")
+
+    def log_message(self, *args):
+        pass
+
+
+@contextmanager
+def foreign_server(everyone: bool = False):
+    """Someone else's HTTP server on a free port of 127.0.0.1: yields the port."""
+    handler = type("Handler", (Foreign,), {"everyone": everyone})
+    with http.server.ThreadingHTTPServer(("127.0.0.1", 0), handler) as server:
+        thread = threading.Thread(target=server.serve_forever, daemon=True)
+        thread.start()
+        try:
+            yield server.server_address[1]
+        finally:
+            server.shutdown()
+
+
+@pytest.mark.parametrize("everyone", [False, True])
+def test_a_foreign_server_does_not_pass_for_ours(everyone):
+    with foreign_server(everyone) as port:
+        assert course.port_taken(port)
+        assert course.next_free_port(port) > port and not course.port_taken(course.next_free_port(port))
+        assert not course.knows_token(f"http://127.0.0.1:{port}/", "0123456789abcdef")
+
+
+@pytest.mark.parametrize("target", ["lab", "app"])
+def test_make_refuses_a_port_that_is_taken(tmp_path, target):
+    make = make_command()
+    with foreign_server() as port:
+        args = [f"PORT={port}", f"WORK={tmp_path / 'work'}"] if target == "lab" else ["CH=03", f"APP_PORT={port}"]
+        result = subprocess.run(
+            [make, "--no-print-directory", *this_venv(), target, *args],
+            cwd=ROOT,
+            env=make_env(tmp_path),
+            capture_output=True,
+            text=True,
+            timeout=120,
+        )
+    said = result.stdout + result.stderr
+    assert result.returncode != 0, said
+    assert f"port {port} is already in use" in said
+    fix = "make lab PORT=" if target == "lab" else "make app CH=03 APP_PORT="
+    assert re.search(rf"Pick another: {re.escape(fix)}\d+", said), said
+    assert "http://" not in said and "is ready" not in said, "an address was printed:\n" + said

@@ -13,11 +13,26 @@ keeping the replaced version in ``my-notebooks/backup/``.
 ``app`` serves one chapter with Voilà: the prose and the live demos, no code.  It reads the
 tracked notebook and never writes it.
 
-Both servers listen on 127.0.0.1 only, keep token authentication on (a new random token each
-start), and print the address to open, with its token, once the server answers.  JupyterLab
-takes the course's settings from ``binder/jupyter-config/labconfig``: no news pop-up (the
-announcements plugin is disabled), and widget state saved with a notebook, so a demo run and
-saved still shows its picture when the notebook is reopened with a new kernel.
+Both servers listen on 127.0.0.1 only and keep token authentication on (a new random token
+each start).  A port that is already taken is refused before anything starts, with the fix
+(``make lab PORT=8890``, ``make app CH=03 APP_PORT=8870``), and the address to open is printed
+only once the server answering there has shown it knows this start's token: never the address
+of someone else's server.  The course's notebooks, as shipped, are signed as trusted.
+
+Both take the course's Jupyter settings from ``binder/jupyter-config``, so that a student's
+terminal shows no warning that reads like an error:
+
+- ``jupyter_server_config.json`` and ``voila.json``: kernels talk to the server over encrypted
+  transport where the kernel supports it (``KernelManager.transport_encryption = "auto"``,
+  CurveZMQ), instead of warning that they run over TCP without encryption;
+- ``jupyter_server_config.json``: JupyterLab's ``notebook_shim`` (the bridge for classic
+  Notebook server extensions, of which the course has none) is off, since it reads the
+  deprecated ``ServerApp.token`` and warns; and no websocket keep-alive pings on this
+  loopback server (``ws_ping_interval = 0``), whose default timeout tornado warns about;
+- ``labconfig/``: no news pop-up (the announcements plugin), and widget state saved with a
+  notebook, so a demo run and saved still shows its picture when the notebook is reopened
+  with a new kernel.  Binder gets these two (``binder/postBuild``), not the server settings
+  above: its server sits behind Binder's own proxy.
 """
 
 from __future__ import annotations
@@ -28,10 +43,12 @@ import os
 import secrets
 import shutil
 import signal
+import socket
 import subprocess
 import sys
 import time
 import urllib.error
+import urllib.parse
 import urllib.request
 from datetime import datetime
 from pathlib import Path
@@ -119,37 +136,74 @@ def restore(originals: Path = ORIGINALS, work: Path = WORK, chapter: str | None 
 # --------------------------------------------------------------------------- the servers
 
 
-def answers(url: str, headers: dict[str, str] | None = None) -> bool:
-    """True when an HTTP server answers ``url`` with a status below 500."""
-    request = urllib.request.Request(url, headers=headers or {})
-    try:
-        with urllib.request.urlopen(request, timeout=2):
+def port_taken(port: int) -> bool:
+    """True when another program already holds ``port`` on 127.0.0.1."""
+    with socket.socket(socket.AF_INET, socket.SOCK_STREAM) as probe:
+        probe.setsockopt(socket.SOL_SOCKET, socket.SO_REUSEADDR, 1)  # as the servers bind: a closed port is free
+        try:
+            probe.bind(("127.0.0.1", port))
+        except OSError:
             return True
+    return False
+
+
+def next_free_port(port: int) -> int:
+    """The first port after ``port`` that is free on 127.0.0.1 now: the one to suggest."""
+    return next(p for p in range(port + 1, 65536) if not port_taken(p))
+
+
+def logs_in(base: str, token: str) -> bool:
+    """True when the Jupyter server at ``base`` logs ``token`` in.
+
+    Its login page, given a token it knows, redirects to the ``next`` page it is asked for
+    (here a fresh, random one); given any other token, it shows the login form.
+    """
+
+    class Keep(urllib.request.HTTPRedirectHandler):
+        def redirect_request(self, *args, **kwargs):
+            return None
+
+    page = f"/kfcourse-{secrets.token_hex(8)}"
+    url = f"{base}login?" + urllib.parse.urlencode({"token": token, "next": page})
+    try:
+        with urllib.request.build_opener(Keep).open(url, timeout=2):
+            return False
     except urllib.error.HTTPError as error:
-        return error.code < 500
+        with error:
+            return error.code == 302 and urllib.parse.urlsplit(error.headers.get("Location", "")).path == page
     except (urllib.error.URLError, OSError):
         return False
 
 
-def serve(command: list[str], env: dict[str, str], probe: str, headers: dict[str, str], banner: list[str]) -> int:
-    """Start a server, print ``banner`` once ``probe`` answers, and stop the server on Ctrl-C.
+def knows_token(base: str, token: str) -> bool:
+    """True when the server at ``base`` is the one this start made: it logs this start's token in, and no other.
 
-    The server shares this process's group, so whoever stops the group stops both; its
-    standard input is closed, so Ctrl-C stops it at once instead of asking.
+    A server of someone else's does not know the token; one that lets anybody in (no token
+    at all) logs the wrong one in too.
     """
+    return logs_in(base, token) and not logs_in(base, f"not-{token}")
+
+
+def serve(command: list[str], env: dict[str, str], port: int, token: str, banner: list[str], fix: str) -> int:
+    """Start a server on ``port``, print ``banner`` once it knows ``token``, stop the server on Ctrl-C.
+
+    A port already taken is refused before anything starts, with ``fix``.  The server shares
+    this process's group, so whoever stops the group stops both; its standard input is closed,
+    so Ctrl-C stops it at once instead of asking.
+    """
+    if port_taken(port):
+        print(f"\n  kfcourse: port {port} is already in use on 127.0.0.1 (another server?). Pick another: {fix}")
+        return 1
     server = subprocess.Popen(command, env=env, stdin=subprocess.DEVNULL)
     signal.signal(signal.SIGTERM, lambda *_: server.terminate())
     try:
         deadline = time.monotonic() + START_TIMEOUT_S
-        while not answers(probe, headers):
+        while not (knows_token(f"http://127.0.0.1:{port}/", token) and server.poll() is None):
             if server.poll() is not None:
-                print(
-                    f"\n  kfcourse: the server stopped (exit code {server.returncode}); see its messages above."
-                    "\n  Port already in use? Pick another: make lab PORT=8890, or make app CH=NN APP_PORT=8870."
-                )
+                print(f"\n  kfcourse: the server stopped (exit code {server.returncode}); see its messages above.")
                 return server.returncode or 1
             if time.monotonic() > deadline:
-                print(f"\n  kfcourse: the server did not answer in {START_TIMEOUT_S} s; stopping it.")
+                print(f"\n  kfcourse: no server of ours answered on port {port} in {START_TIMEOUT_S} s; stopping it.")
                 return 1
             time.sleep(0.25)
         print("\n".join(["", *banner, ""]), flush=True)
@@ -164,6 +218,18 @@ def serve(command: list[str], env: dict[str, str], probe: str, headers: dict[str
             except subprocess.TimeoutExpired:
                 server.kill()
                 server.wait()
+
+
+def trust(paths: list[Path]) -> None:
+    """Sign the notebooks as trusted with Jupyter's notary, so the server does not warn that they are not."""
+    import nbformat  # of the course's environment (`make restore` runs without it)
+    from nbformat.sign import NotebookNotary
+
+    notary = NotebookNotary()
+    for path in paths:
+        nb = nbformat.read(path, as_version=4)
+        if not notary.check_signature(nb):
+            notary.sign(nb)
 
 
 def server_env(token: str) -> dict[str, str]:
@@ -185,6 +251,7 @@ def lab(port: int, work: Path) -> int:
     copied = make_working_copy(ORIGINALS, work)
     if copied:
         print(f"  kfcourse: copied {len(copied)} notebook(s) into {work} (your own copy: edit and save freely)")
+    trust([p for p in notebooks(work) if (ORIGINALS / p.name).exists() and filecmp.cmp(p, ORIGINALS / p.name, False)])
     token = secrets.token_hex(24)
     command = [
         tool("jupyter"),
@@ -205,11 +272,13 @@ def lab(port: int, work: Path) -> int:
         f"  It serves your own copy of the chapters, {work}; `make restore CH=NN` brings back a chapter's original.",
         "  Ctrl-C here stops the server.",
     ]
-    return serve(command, server_env(token), f"{base}api/status", {"Authorization": f"token {token}"}, banner)
+    fix = f"make lab PORT={next_free_port(port)}"
+    return serve(command, server_env(token), port, token, banner, fix)
 
 
 def app(port: int, chapter: str) -> int:
     notebook = find_chapter(ORIGINALS, chapter)
+    trust([notebook])
     token = secrets.token_hex(24)
     command = [
         tool("voila"),
@@ -226,7 +295,8 @@ def app(port: int, chapter: str) -> int:
         f"      {base}?token={token}",
         "  (each visit runs the chapter afresh; Ctrl-C here stops the server)",
     ]
-    return serve(command, server_env(token), f"{base}login", {}, banner)
+    fix = f"make app CH={notebook.name[:2]} APP_PORT={next_free_port(port)}"
+    return serve(command, server_env(token), port, token, banner, fix)
 
 
 def main(argv: list[str] | None = None) -> int:

@@ -2,8 +2,8 @@
 
 `make app CH=04` runs in this test environment's own venv (make is told not to rebuild
 it), on a free port.  The page must show the chapter's prose and its live demo without
-any code, and a key press on a slider must change the picture.  The server must refuse a
-visitor without the token.  The process group of `make app` is stopped at the end.
+any code, and a key press on a slider must change the picture, while the terminal shows no
+warning.  The server must refuse a visitor without the token.  The process group of `make app` is stopped at the end.
 """
 
 from __future__ import annotations
@@ -18,7 +18,7 @@ from pathlib import Path
 
 import pytest
 
-from tests.servers import NoRedirect, Served, free_port
+from tests.servers import ALARMING, NoRedirect, Served, free_port
 
 try:
     from playwright.sync_api import TimeoutError as PlaywrightTimeoutError
@@ -60,7 +60,7 @@ def app(tmp_path_factory, chromium_executable):
     ]
     server = Served(command, ROOT, env, rf"http://127\.0\.0\.1:{port}/\?token=[0-9a-f]{{16,}}")
     try:
-        yield {"url": server.wait_for_url(START_TIMEOUT_S), "port": port}
+        yield {"url": server.wait_for_url(START_TIMEOUT_S), "port": port, "lines": server.lines}
     finally:
         server.stop()
 
@@ -116,3 +116,5 @@ def test_app_shows_prose_and_a_live_demo_without_code(browser, app, report):
         page.screenshot(path=str(report.artifacts / f"voila_{CHAPTER}.png"))
     finally:
         context.close()
+    alarming = [line for line in app["lines"] if ALARMING.search(line)]
+    assert not alarming, "the student's terminal shows:\n" + "\n".join(alarming)
