@@ -4,6 +4,8 @@
 # and for students:
 #   make app CH=03       one chapter as an app (Voila: prose and live demos, no code)
 #   make restore CH=03   put chapter 3's original back into my-notebooks/ (no CH: every chapter)
+# and for instructors:
+#   make badges REPO=me/kfcourse REF=v1.0   every Binder link to a fork and a tag
 PYTHON   ?= python3
 VENV     ?= .venv
 BIN      := $(VENV)/bin
@@ -13,7 +15,7 @@ WORK     ?= my-notebooks
 CH       ?=
 STAMP    := $(VENV)/.kfcourse-installed
 
-.PHONY: lab app restore test lint bench notebooks site pins clean
+.PHONY: lab app restore badges test lint bench notebooks site pins clean
 
 $(STAMP): binder/requirements.txt requirements-dev.txt pyproject.toml
 	$(PYTHON) -m venv $(VENV)
@@ -74,6 +76,11 @@ notebooks: $(STAMP)
 # (and a short recording of its run where it has Run/Pause). Open site/index.html.
 site: $(STAMP)
 	$(BIN)/python tools/build_site.py --out site
+
+# Point every Binder link (README, each chapter's badge cell, so the app view and the site too)
+# at a fork and a tag: make badges REPO=OWNER/NAME REF=v1.0 (either may be left out).
+badges: $(STAMP)
+	@$(BIN)/python tools/badges.py $(if $(REPO),--repo '$(REPO)') $(if $(REF),--ref '$(REF)')
 
 # Re-resolve the pinned environments from the ranges in pyproject.toml.
 pins:

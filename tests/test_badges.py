@@ -7,8 +7,11 @@ pyproject.toml; a chapter notebook added without running it fails here.
 from __future__ import annotations
 
 import json
+import os
 import re
 import shutil
+import subprocess
+import sys
 from pathlib import Path
 
 import nbformat
@@ -69,12 +72,13 @@ def test_badges_are_up_to_date():
     assert badges.stale(ROOT) == []
 
 
-def copy_of_the_course(tmp_path: Path) -> Path:
+def copy_of_the_course(tmp_path: Path, chapters: list[Path] = NOTEBOOKS[:2]) -> Path:
     root = tmp_path / "course"
     (root / "notebooks").mkdir(parents=True)
-    shutil.copy(ROOT / "pyproject.toml", root)
-    shutil.copy(ROOT / "README.md", root)
-    for path in NOTEBOOKS[:2]:
+    (root / "tools").mkdir()
+    for name in ("pyproject.toml", "README.md", "Makefile", "tools/badges.py"):
+        shutil.copy(ROOT / name, root / name)
+    for path in chapters:
         shutil.copy(path, root / "notebooks")
     return root
 
@@ -139,5 +143,45 @@ def test_links_for_a_class_at_a_release_tag(capsys):
     teaching = (ROOT / "README.md").read_text(encoding="utf-8").split("## Teaching a class", 1)
     assert len(teaching) == 2, "README.md has no 'Teaching a class' section"
     section = teaching[1].split("\n## ", 1)[0]
-    for needed in ("python tools/badges.py --print --ref", "jupyter-repo2docker", "make site"):
+    for needed in ("make badges REPO=", "python tools/badges.py --print --ref", "jupyter-repo2docker", "make site"):
         assert needed in section, f"the 'Teaching a class' section does not mention {needed}"
+
+
+def test_make_badges_points_every_link_at_a_fork_and_a_tag(tmp_path):
+    """What an instructor who forks the course runs: no link is left on the original repository."""
+    root = copy_of_the_course(tmp_path, NOTEBOOKS)
+    old = badges.repository(ROOT)
+    venv = Path(sys.prefix)
+    env = {k: v for k, v in os.environ.items() if k not in ("MAKEFLAGS", "MFLAGS", "MAKELEVEL")}
+    make = [shutil.which("make") or "make", "--no-print-directory", f"--assume-old={venv / '.kfcourse-installed'}"]
+    done = subprocess.run(
+        [*make, "badges", f"VENV={venv}", "REPO=a-teacher/kf-course.fork", "REF=v2.1"],
+        cwd=root,
+        env=env,
+        capture_output=True,
+        text=True,
+        timeout=120,
+    )
+    assert done.returncode == 0, done.stdout + done.stderr
+    assert "a-teacher/kf-course.fork at v2.1" in done.stdout
+    files = [root / "README.md", root / "pyproject.toml", *badges.chapters(root)]
+    for path in files:
+        assert old not in path.read_text(encoding="utf-8"), f"{path.name} still names {old}"
+    links = [link for path in files for link in binder_links(path.read_text(encoding="utf-8"))]
+    assert len(links) >= 4 * len(NOTEBOOKS)  # each chapter's two badges, in its notebook and in the README
+    assert {(repo, ref) for repo, ref, _, _ in links} == {("a-teacher/kf-course.fork", "v2.1")}
+    assert badges.stale(root) == []  # the fork's own `make test` finds its badges up to date
+
+    # REF alone moves the links to the next term's tag and keeps the fork.
+    assert badges.retarget(root, ref="v3.0") != []
+    links = [link for path in files for link in binder_links(path.read_text(encoding="utf-8"))]
+    assert {(repo, ref) for repo, ref, _, _ in links} == {("a-teacher/kf-course.fork", "v3.0")}
+
+
+@pytest.mark.parametrize(("repo", "ref"), [("no-slash", None), ("a/b/c", None), (None, "v1.0 beta"), (None, "../x")])
+def test_retarget_refuses_what_is_not_a_repository_or_a_tag(tmp_path, repo, ref):
+    root = copy_of_the_course(tmp_path)
+    before = {p: p.read_bytes() for p in root.rglob("*") if p.is_file()}
+    with pytest.raises(ValueError, match="repo must be OWNER/NAME" if repo else "ref must be a branch or tag"):
+        badges.retarget(root, repo, ref)
+    assert {p: p.read_bytes() for p in root.rglob("*") if p.is_file()} == before

@@ -1,16 +1,21 @@
 """Write the Binder badges of every chapter: at the top of each notebook and in the README.
 
     python tools/badges.py                  # (re)write them; run it again after adding a chapter
+    python tools/badges.py --repo me/kfcourse --ref v1.0   # point every link at a fork and a tag
     python tools/badges.py --check          # exit 1 if any badge is missing or stale
-    python tools/badges.py --print --ref v1.0   # the links at a release tag, e.g. for a class
+    python tools/badges.py --print --ref v1.0   # only print the links at a tag, writing nothing
+
+``make badges REPO=OWNER/NAME REF=TAG`` runs the second line in the course's environment.
 
 Each chapter ``notebooks/NN_name.ipynb`` gets two badges: one opens it in JupyterLab on
 Binder, the other opens it as an app (Voilà: prose and live demos, no code).  They go into
 the notebook's first cell (a markdown cell with the id ``binder-badges``, inserted if
 missing; no other cell is touched) and into the "open on Binder" column of the README's
-chapter table, whose ``[binder]`` link at the bottom is written too.  The repository is
-named once, in ``pyproject.toml`` (``[project.urls] Repository``).  Running this again
-changes nothing.
+chapter table, whose ``[binder]`` link at the bottom is written too.  The app view (Voilà)
+and the static site (``make site``) show each notebook's badge cell, so they follow.  The
+repository is named once, in ``pyproject.toml`` (``[project.urls] Repository``), and so is
+the branch or tag the links open (``[tool.kfcourse] binder-ref``); ``--repo`` and ``--ref``
+change both there, then rewrite every link.  Running this again changes nothing.
 """
 
 from __future__ import annotations
@@ -30,13 +35,53 @@ COLUMN = "open on Binder"
 NOTE = "<!-- Binder badges, written by tools/badges.py: run it again after adding a chapter. -->"
 
 
+REPOSITORY = re.compile(r'(?m)^(Repository\s*=\s*)"https://github\.com/([\w.-]+/[\w.-]+?)/?"\s*$')
+BINDER_REF = re.compile(r'(?m)^(binder-ref\s*=\s*)"([^"]*)"')
+REPO_FORM = re.compile(r"^[\w.-]+/[\w.-]+$")
+REF_FORM = re.compile(r"^[\w.-]+$")
+
+
 def repository(root: Path = ROOT) -> str:
     """``owner/name`` on GitHub, from ``[project.urls] Repository`` in pyproject.toml."""
-    text = (root / "pyproject.toml").read_text(encoding="utf-8")
-    match = re.search(r'(?m)^Repository\s*=\s*"https://github\.com/([\w.-]+/[\w.-]+?)/?"\s*$', text)
+    match = REPOSITORY.search((root / "pyproject.toml").read_text(encoding="utf-8"))
     if match is None:
         raise ValueError('pyproject.toml needs [project.urls] Repository = "https://github.com/OWNER/NAME"')
-    return match[1]
+    return match[2]
+
+
+def binder_ref(root: Path = ROOT) -> str:
+    """The branch or tag the links open, from ``[tool.kfcourse] binder-ref`` in pyproject.toml."""
+    match = BINDER_REF.search((root / "pyproject.toml").read_text(encoding="utf-8"))
+    if match is None:
+        raise ValueError('pyproject.toml needs [tool.kfcourse] binder-ref = "HEAD" (or a tag)')
+    return match[2]
+
+
+def checked(repo: str | None, ref: str | None) -> None:
+    """Raise ValueError unless ``repo`` is ``owner/name`` and ``ref`` a branch or tag name (None: unchanged)."""
+    if repo is not None and not REPO_FORM.match(repo):
+        raise ValueError(f"repo must be OWNER/NAME on GitHub, e.g. me/kfcourse, got {repo!r}")
+    if ref is not None and not REF_FORM.match(ref):
+        raise ValueError(f"ref must be a branch or tag name (letters, digits, '.', '_', '-'), e.g. v1.0, got {ref!r}")
+
+
+def retarget(root: Path = ROOT, repo: str | None = None, ref: str | None = None) -> list[Path]:
+    """Name ``repo`` and ``ref`` in pyproject.toml, then rewrite every link; returns the files that changed."""
+    checked(repo, ref)
+    path = root / "pyproject.toml"
+    old = path.read_text(encoding="utf-8")
+    repository(root)  # raises unless pyproject.toml names both
+    binder_ref(root)
+    new = old
+    if repo is not None:
+        new = REPOSITORY.sub(lambda m: f'{m[1]}"https://github.com/{repo}"', new)
+    if ref is not None:
+        new = BINDER_REF.sub(lambda m: f'{m[1]}"{ref}"', new)
+    changed = []
+    if new != old:
+        path.write_text(new, encoding="utf-8")
+        changed.append(path)
+    return changed + write_all(root)
 
 
 def chapters(root: Path = ROOT) -> list[Path]:
@@ -122,9 +167,9 @@ def readme_text(text: str, repo: str, ref: str, root: Path = ROOT) -> str:
     return text
 
 
-def write_all(root: Path = ROOT, ref: str = "HEAD") -> list[Path]:
+def write_all(root: Path = ROOT) -> list[Path]:
     """(Re)write every badge under ``root``; returns the files that changed."""
-    repo = repository(root)
+    repo, ref = repository(root), binder_ref(root)
     changed = [p for p in chapters(root) if write_notebook(p, badges(repo, ref, p, root))]
     readme = root / "README.md"
     old = readme.read_text(encoding="utf-8")
@@ -135,9 +180,9 @@ def write_all(root: Path = ROOT, ref: str = "HEAD") -> list[Path]:
     return changed
 
 
-def stale(root: Path = ROOT, ref: str = "HEAD") -> list[str]:
+def stale(root: Path = ROOT) -> list[str]:
     """What ``write_all`` would change, without writing: a list of problems, empty when all is well."""
-    repo = repository(root)
+    repo, ref = repository(root), binder_ref(root)
     problems = []
     for path in chapters(root):
         nb = nbformat.read(path, as_version=4)
@@ -156,23 +201,31 @@ def main(argv: list[str] | None = None) -> int:
     parser = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
     parser.add_argument("--check", action="store_true", help="only report missing or stale badges")
     parser.add_argument("--print", action="store_true", help="only print each chapter's two links")
-    parser.add_argument("--ref", default="HEAD", help="branch or tag Binder builds (default: HEAD)")
+    parser.add_argument("--repo", default=None, help="OWNER/NAME on GitHub: point every link at it (a fork)")
+    parser.add_argument("--ref", default=None, help="branch or tag Binder builds, e.g. v1.0 (default: as named)")
     args = parser.parse_args(argv)
-    if args.print:
-        repo = repository()
-        for path in chapters():
-            rel = path.relative_to(ROOT).as_posix()
-            print(f"{path.stem}\n  lab: {lab_url(repo, args.ref, rel)}\n  app: {app_url(repo, args.ref, rel)}")
-        return 0
-    if args.check:
-        problems = stale(ref=args.ref)
-        for problem in problems:
-            print(problem)
-        if problems:
-            print("run: python tools/badges.py")
-        return 1 if problems else 0
-    for path in write_all(ref=args.ref):
+    try:
+        checked(args.repo, args.ref)
+        if args.print:
+            repo, ref = args.repo or repository(), args.ref or binder_ref()
+            for path in chapters():
+                rel = path.relative_to(ROOT).as_posix()
+                print(f"{path.stem}\n  lab: {lab_url(repo, ref, rel)}\n  app: {app_url(repo, ref, rel)}")
+            return 0
+        if args.check:
+            problems = stale()
+            for problem in problems:
+                print(problem)
+            if problems:
+                print("run: python tools/badges.py")
+            return 1 if problems else 0
+        changed = retarget(ROOT, args.repo, args.ref)
+    except ValueError as error:
+        print(f"badges: {error}", file=sys.stderr)
+        return 2
+    for path in changed:
         print(f"wrote {path.relative_to(ROOT)}")
+    print(f"every Binder link opens {repository()} at {binder_ref()}")
     return 0
 
 
