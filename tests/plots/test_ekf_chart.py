@@ -25,6 +25,7 @@ def test_chart_draws_both_runs(runs):
         ellipses = [p for p in ax.patches if isinstance(p, Ellipse)]
         assert len(ellipses) == len(range(0, run.t.size, 12))
         assert f"largest error {run.error.max():.1f} m" in ax.get_title()  # not the final error: chaotic
+        assert kf.plots.ekf.share_outside(run) in ax.get_title()
         for p in ellipses:
             assert np.isfinite(p.get_verts()).all()
     errors = [np.asarray(line.get_ydata()) for line in ax_e.get_lines()]
@@ -50,3 +51,22 @@ def test_samples_chart_draws_both_histograms():
     assert np.isfinite(gauss.get_xydata()).all()
     with pytest.raises(ValueError, match="same length"):
         kf.plots.nonlinear_samples_chart(x, x[:10])
+
+
+@pytest.mark.parametrize(
+    ("inside", "words"),
+    [
+        ([True] * 20, "never"),
+        ([True] * 19 + [False], "at fewer than 1 step in 10"),  # 5 %
+        ([True] * 2 + [False] * 18, "at least 9 steps in 10"),  # 90 %
+        ([True] + [False] * 19, "at least 9 steps in 10"),  # 95 %: whole tenths, rounded down
+        ([False] * 20, "at least 10 steps in 10"),
+    ],
+)
+def test_share_outside_in_whole_tenths(inside, words):
+    class Run:
+        pass
+
+    run = Run()
+    run.inside = np.array(inside)
+    assert kf.plots.ekf.share_outside(run) == words
