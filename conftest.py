@@ -12,6 +12,7 @@ perturbation of 1e-12 states digits of this machine's rounding, not facts.
 from __future__ import annotations
 
 import os
+import shutil
 import tempfile
 from pathlib import Path
 
@@ -35,10 +36,12 @@ def pytest_configure(config):
     from tests import rounding
 
     rounding.perturb_noise(size)
-    startup = Path(tempfile.mkdtemp(prefix="kfcourse-ipython-")) / "profile_default" / "startup"
+    ipython_dir = Path(tempfile.mkdtemp(prefix="kfcourse-ipython-"))
+    config.add_cleanup(lambda: shutil.rmtree(ipython_dir, ignore_errors=True))
+    startup = ipython_dir / "profile_default" / "startup"
     startup.mkdir(parents=True)
     (startup / "00-perturb.py").write_text(rounding.startup_script(size))
-    os.environ["IPYTHONDIR"] = str(startup.parents[1])  # the notebook kernels nbval starts read it
+    os.environ["IPYTHONDIR"] = str(ipython_dir)  # the notebook kernels nbval starts read it
 
 
 @pytest.hookimpl(wrapper=True)

@@ -2,8 +2,7 @@
 
 Each check returns a clean ``float`` array (or ``float``) and raises
 ``ValueError`` whose message starts with the argument's name and says what was
-expected.  Every call checks its inputs in full; the checks are kept cheap
-because the filters call them on every step.
+expected.  Every call checks its inputs in full, with plain numpy.
 """
 
 from __future__ import annotations
@@ -18,17 +17,6 @@ _PSD_RTOL = 1e-9  # relative negative eigenvalue tolerated in a covariance
 _SUM_ATOL = 1e-6  # how far a probability vector may be from summing to 1
 
 
-def all_finite(a: np.ndarray) -> bool:
-    """Whether every element of the float array ``a`` is finite (no NaN, no inf)."""
-    # A sum is finite only if every term is: NaN and inf carry through (and squares cannot cancel an inf).
-    if a.size <= 16:  # a filter's vectors and matrices: Python sums a short list faster than numpy starts up
-        total = sum(a.ravel().tolist())
-    else:  # longer: the sum of squares in one numpy call (vdot flattens, and does not warn if it overflows)
-        total = np.vdot(a, a)
-    # A non-finite sum of finite terms is an overflow, so then look at each element.
-    return math.isfinite(total) or bool(np.isfinite(a).all())
-
-
 def _floats(x, name: str) -> np.ndarray:
     """``x`` as a float array, rejecting non-numbers (NaN and inf are left to the caller)."""
     try:
@@ -40,7 +28,7 @@ def _floats(x, name: str) -> np.ndarray:
 def finite(x, name: str) -> np.ndarray:
     """Return ``x`` as a float array, rejecting NaN, inf and non-numbers."""
     a = _floats(x, name)
-    if not all_finite(a):
+    if not np.isfinite(a).all():
         raise ValueError(f"{name} must be finite (no NaN or inf), got {x!r}")
     return a
 
@@ -103,8 +91,6 @@ def flag(x, name: str) -> bool:
 def vector(x, name: str, n: int | None = None) -> np.ndarray:
     """A finite 1-D array (a scalar becomes length 1), of length ``n`` if given."""
     a = finite(x, name)
-    if a.ndim == 1 and (n is None or len(a) == n):  # the usual case, told first
-        return a
     if a.ndim == 0:
         a = a.reshape(1)
     if a.ndim != 1:
@@ -128,10 +114,7 @@ def _shaped(a: np.ndarray, name: str, rows: int | None, cols: int | None) -> np.
 
 def matrix(x, name: str, rows: int | None = None, cols: int | None = None) -> np.ndarray:
     """A finite 2-D array; a scalar becomes 1x1 and a 1-D array one row."""
-    a = finite(x, name)
-    if a.shape == (rows, cols):  # the usual case, told first
-        return a
-    return _shaped(a, name, rows, cols)
+    return _shaped(finite(x, name), name, rows, cols)
 
 
 def _square(a: np.ndarray, name: str, n: int | None) -> np.ndarray:
@@ -144,94 +127,21 @@ def _square(a: np.ndarray, name: str, n: int | None) -> np.ndarray:
     return a
 
 
-def _exactly_symmetric(a: np.ndarray) -> bool:
-    """Whether ``a`` equals its transpose: the same bytes read by rows as by columns."""
-    return a.tobytes() == a.T.tobytes()
-
-
-def _positive_definite(a: np.ndarray) -> bool:
-    """Whether the symmetric matrix ``a`` is positive definite: it has a Cholesky factor."""
-    try:
-        np.linalg.cholesky(a)
-    except np.linalg.LinAlgError:
-        return False
-    return True
-
-
-def _semi_definite(M: np.ndarray, blocks: list[np.ndarray]) -> bool:
-    """Whether the symmetric block-diagonal ``M`` is positive semi-definite up to rounding in
-    each of its ``blocks``: positive definite (the quick test), or no eigenvalue below minus
-    the rounding tolerance of the block whose largest variance is the smallest."""
-    if _positive_definite(M):
-        return True
-    smallest = min(max(a.diagonal().tolist()) for a in blocks)
-    return bool(np.linalg.eigvalsh(M)[0] >= -_PSD_RTOL * smallest)
-
-
-def _covariance_alone(a: np.ndarray, name: str) -> None:
-    """Check one finite square matrix: symmetric and positive semi-definite, each up to rounding."""
-    if not _exactly_symmetric(a) and np.abs(a - a.T).max() > _SYM_RTOL * np.abs(a).max():
-        raise ValueError(f"{name} must be a symmetric covariance matrix, got {a.tolist()}")
-    if _positive_definite(a):
-        return
-    lowest = np.linalg.eigvalsh(a)[0]  # semi-definite is fine: look at the smallest eigenvalue
-    if lowest < -_PSD_RTOL * np.abs(a).max():
-        raise ValueError(f"{name} must be positive semi-definite (a covariance), but has eigenvalue {lowest:.3g}")
-
-
-def block_diagonal(blocks: list[np.ndarray]) -> np.ndarray:
-    r"""The square matrices :math:`A_1, A_2, \dots` down the diagonal, zeros elsewhere."""
-    if len(blocks) == 1:
-        return blocks[0]
-    size = sum(map(len, blocks))
-    M = np.zeros((size, size))
-    start = 0
-    for A in blocks:
-        end = start + len(A)
-        M[start:end, start:end] = A
-        start = end
-    return M
-
-
-def covariances(*named: tuple[object, str, int | None]) -> list[np.ndarray]:
-    r"""Check several covariance matrices at once, each given as ``(x, name, n)``.
-
-    Each must be a finite, symmetric, positive semi-definite ``(n, n)`` matrix
-    (``n=None``: any size).  Shapes are checked one by one; finiteness, symmetry
-    and definiteness together, on the block-diagonal matrix
-
-    .. math:: M = \begin{pmatrix} A_1 & & \\ & A_2 & \\ & & \ddots \end{pmatrix}
-
-    (zeros off the blocks).  :math:`M` is finite and symmetric exactly when every block is,
-    and its eigenvalues are those of all the blocks together, so :math:`M` is
-    positive definite exactly when every block is -- which one Cholesky
-    factorisation of :math:`M` tells, as it exists only for a positive definite
-    matrix.  A singular (semi-definite) covariance is allowed, such as the process
-    noise of a constant-velocity model, and so is a negative eigenvalue of rounding
-    size: when the factorisation fails, the lowest eigenvalue of :math:`M` tells.
-    Only when that fails too is each matrix checked on its own, to name the one at
-    fault or to accept it (an asymmetry of rounding size is allowed as well).
-
-    Returns
-    -------
-    list of ndarray
-        The matrices as float arrays, in the order given.
-    """
-    mats = []
-    for x, name, n in named:
-        a = _floats(x, name)
-        mats.append(a if a.shape == (n, n) and n else _square(a, name, n))  # the usual shape told first
-    M = block_diagonal(mats)
-    if not (all_finite(M) and _exactly_symmetric(M) and _semi_definite(M, mats)):
-        for a, (x, name, _) in zip(mats, named, strict=True):
-            finite(x, name)  # raises if this one holds a NaN or inf
-            _covariance_alone(a, name)
-    return mats
-
-
 def covariance(x, name: str, n: int | None = None) -> np.ndarray:
-    """A finite, symmetric, positive semi-definite ``(n, n)`` matrix."""
-    return covariances((x, name, n))[0]
+    """A finite, symmetric, positive semi-definite ``(n, n)`` matrix (``n=None``: any size).
+
+    Symmetric and positive semi-definite up to rounding: an asymmetry, or a negative
+    eigenvalue, smaller than ``1e-9`` times the matrix's largest entry is allowed.  A
+    singular covariance is fine, such as the process noise of a constant-velocity model.
+    """
+    a = _square(finite(x, name), name, n)
+    scale = np.abs(a).max()
+    if np.abs(a - a.T).max() > _SYM_RTOL * scale:
+        raise ValueError(f"{name} must be a symmetric covariance matrix, got {a.tolist()}")
+    lowest = np.linalg.eigvalsh(a)[0]
+    if lowest < -_PSD_RTOL * scale:
+        raise ValueError(f"{name} must be positive semi-definite (a covariance), but has eigenvalue {lowest:.3g}")
+    return a
 
 
 def covariance_stack(x, name: str, N: int, n: int) -> np.ndarray:
@@ -261,11 +171,11 @@ def covariance_stack(x, name: str, N: int, n: int) -> np.ndarray:
 def update_inputs(mu_bar, Sig_bar, z, Q) -> tuple[np.ndarray, np.ndarray, np.ndarray, np.ndarray]:
     """The inputs every measurement update shares: the predicted belief
     ``mu_bar`` (n,), ``Sig_bar`` (n, n), the reading ``z`` (k,) and its noise
-    covariance ``Q`` (k, k); the two covariances are checked together."""
+    covariance ``Q`` (k, k)."""
     mu_bar = vector(mu_bar, "mu_bar")
+    Sig_bar = covariance(Sig_bar, "Sig_bar", mu_bar.size)
     z = vector(z, "z")
-    Sig_bar, Q = covariances((Sig_bar, "Sig_bar", mu_bar.size), (Q, "Q", z.size))
-    return mu_bar, Sig_bar, z, Q
+    return mu_bar, Sig_bar, z, covariance(Q, "Q", z.size)
 
 
 def probabilities(x, name: str) -> np.ndarray:

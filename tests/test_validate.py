@@ -1,11 +1,6 @@
-"""The input checks' own paths: one look at several covariances, and finiteness by sums.
-
-``covariances`` checks finiteness, symmetry and definiteness of all its matrices on one
-block-diagonal matrix (a Cholesky factorisation, then the lowest eigenvalue for a singular
-one), and names the matrix at fault only after that look fails;
-``all_finite`` sums a short array in Python and a long one's squares in numpy, and looks
-at each element when a sum of finite numbers overflows.
-"""
+"""The input checks' own paths: a covariance is judged finite, symmetric and positive
+semi-definite on its own scale, and a singular one (a constant-velocity model's process
+noise) passes; the error names the argument and what was expected."""
 
 from __future__ import annotations
 
@@ -25,7 +20,7 @@ def test_the_covariance_that_is_not_finite_is_named(which, bad):
     covs = {"Sig": I3.copy(), "R": 0.1 * I3, "Q": 0.5 * I2}
     covs[which][1, 1] = bad
     with pytest.raises(ValueError, match=rf"^{which} must be finite"):
-        v.covariances((covs["Sig"], "Sig", 3), (covs["R"], "R", 3), (covs["Q"], "Q", 2))
+        kf.kf_step(np.zeros(3), covs["Sig"], None, [1.0, 2.0], I3, None, np.eye(2, 3), covs["R"], covs["Q"])
 
 
 def test_a_non_finite_entry_off_the_diagonal_is_found_too():
@@ -36,38 +31,26 @@ def test_a_non_finite_entry_off_the_diagonal_is_found_too():
 
 
 def test_huge_finite_covariances_pass():
-    # their sum of squares overflows to inf, so each element is looked at, and all are finite
-    big = 1e200 * np.diag([1.0, 2.0, 3.0])
-    Sig, R = v.covariances((big, "Sig", 3), (big, "R", 3))
-    assert Sig[0, 0] == 1e200 and R[2, 2] == 3e200
+    big = 1e200 * np.diag([1.0, 2.0, 3.0])  # its sum of squares would overflow
+    assert v.covariance(big, "Sig", 3)[2, 2] == 3e200
 
 
 def test_semi_definite_and_rounding_asymmetric_covariances_pass():
-    singular = np.diag([1.0, 0.0])
+    assert v.covariance(np.diag([1.0, 0.0]), "Sig", 2)[1, 1] == 0.0
     skewed = np.array([[2.0, 1.0], [1.0 + 1e-12, 2.0]])  # asymmetric by rounding only
-    out = v.covariances((singular, "Sig", 2), (skewed, "R", 2))
-    assert out[0][1, 1] == 0.0 and out[1][1, 0] == 1.0 + 1e-12
+    assert v.covariance(skewed, "R", 2)[1, 0] == 1.0 + 1e-12
+    with pytest.raises(ValueError, match=r"^R must be a symmetric covariance matrix"):
+        v.covariance(np.array([[2.0, 1.0], [1.1, 2.0]]), "R", 2)
 
 
-def test_a_small_covariance_is_judged_on_its_own_scale_beside_a_large_one():
-    # a singular process noise (a constant-velocity model's) passes beside a covariance a million times larger
+def test_a_small_covariance_is_judged_on_its_own_scale():
     Gam = np.array([[0.5], [1.0]])
-    R = v.covariances((1e6 * I2, "Sig", 2), (Gam @ Gam.T, "R", 2))[1]
-    assert R[1, 1] == 1.0
-    # a negative eigenvalue of 1e-4 is no rounding error for R, even though it is for Sig's 1e6
-    with pytest.raises(ValueError, match=r"^R must be positive semi-definite"):
-        v.covariances((1e6 * I2, "Sig", 2), (np.diag([1.0, -1e-4]), "R", 2))
-
-
-@pytest.mark.parametrize("size", [3, 16, 17, 500])
-def test_all_finite_short_and_long(size):
-    a = np.linspace(-1.0, 1.0, size)
-    assert v.all_finite(a) and v.all_finite(a.reshape(1, -1))
-    for bad in (NAN, INF, -INF):
-        b = a.copy()
-        b[size // 2] = bad
-        assert not v.all_finite(b)
-    assert v.all_finite(np.full(size, 1e300))  # overflowing sums of finite numbers
+    assert v.covariance(Gam @ Gam.T, "R", 2)[1, 1] == 1.0  # white-noise acceleration: singular
+    assert v.covariance(np.diag([1.0, -1e-10]), "R", 2)[1, 1] == -1e-10  # a negative eigenvalue of rounding size
+    with pytest.raises(ValueError, match=r"^R must be positive semi-definite"):  # 1e-4 is no rounding error
+        v.covariance(np.diag([1.0, -1e-4]), "R", 2)
+    with pytest.raises(ValueError, match=r"^R must be positive semi-definite"):  # judged on R's scale, not Sig's
+        kf.kf_step(np.zeros(2), 1e6 * I2, None, [1.0, 2.0], I2, None, I2, np.diag([1.0, -1e-4]), I2)
 
 
 def test_usual_shapes_and_the_others():

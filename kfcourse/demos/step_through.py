@@ -5,7 +5,7 @@ from __future__ import annotations
 import ipywidgets as widgets
 import numpy as np
 
-from ..filters.kalman import kf_1d_gain, kf_1d_predict, kf_1d_update
+from ..filters.kalman_1d import kf_1d_gain, kf_1d_predict, kf_1d_update
 from ..plots import palette
 from ..plots.artists import gaussian_curve, update_gaussian_curve
 from ..plots.style import FigureRenderer, fixed_width_ticks, new_figure, nice_limit

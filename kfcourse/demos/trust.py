@@ -6,7 +6,7 @@ import ipywidgets as widgets
 import numpy as np
 
 from ..filters.gaussian import fuse
-from ..filters.kalman import kf_1d_gain
+from ..filters.kalman_1d import kf_1d_gain
 from ..plots import palette
 from ..plots.artists import gain_gauge, gaussian_curve, update_gain_gauge, update_gaussian_curve
 from ..plots.style import FigureRenderer, fixed_width_ticks, new_figure, nice_limit

@@ -5,19 +5,8 @@ from .batch import kf_step_batch
 from .bayes import bayes_predict, bayes_update
 from .ekf import ekf_predict, ekf_update
 from .gaussian import add_gaussians, affine_gaussian, ellipse_axes, fuse, gaussian_pdf, mass_inside, mvn_pdf
-from .kalman import (
-    KF1DCycle,
-    kf_1d_cycle,
-    kf_1d_gain,
-    kf_1d_predict,
-    kf_1d_step,
-    kf_1d_update,
-    kf_gain,
-    kf_predict,
-    kf_step,
-    kf_update,
-    steady_state_1d,
-)
+from .kalman import kf_gain, kf_predict, kf_step, kf_update
+from .kalman_1d import KF1DCycle, kf_1d_cycle, kf_1d_gain, kf_1d_predict, kf_1d_step, kf_1d_update, steady_state_1d
 from .ukf import sigma_points, ukf_predict, ukf_update, unscented_1d, unscented_transform
 
 __all__ = [

@@ -46,7 +46,7 @@ def ekf_predict(mu, Sig, u, g: Callable, G: Callable, R) -> tuple[np.ndarray, np
     """
     mu = v.vector(mu, "mu")
     n = mu.size
-    Sig, R = v.covariances((Sig, "Sig", n), (R, "R", n))  # both at once
+    Sig, R = v.covariance(Sig, "Sig", n), v.covariance(R, "R", n)
     g, G = v.function(g, "g"), v.function(G, "G")
     return _ekf_predict(
         mu,

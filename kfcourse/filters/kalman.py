@@ -1,293 +1,48 @@
-"""The Kalman filter: scalar (chapter 3-4) and matrix (chapter 5) forms.
+"""The matrix Kalman filter of chapter 5: equations (1)-(5) on vectors and matrices.
 
 Noise letters follow the course: ``R`` is the process (motion) noise covariance,
-``Q`` the measurement (sensor) noise covariance.
+``Q`` the measurement (sensor) noise covariance.  The scalar filter of chapters 3
+and 4 is in :mod:`kfcourse.filters.kalman_1d`.
 """
 
 from __future__ import annotations
 
-import math
-from typing import NamedTuple
-
 import numpy as np
 
 from .. import _validate as v
-from .gaussian import fuse
-from .linalg import gain, innovation_covariance, joseph_correct, symmetric
 
-__all__ = [
-    "KF1DCycle",
-    "fuse",
-    "kf_1d_cycle",
-    "kf_1d_gain",
-    "kf_1d_predict",
-    "kf_1d_step",
-    "kf_1d_update",
-    "kf_gain",
-    "kf_predict",
-    "kf_step",
-    "kf_update",
-    "steady_state_1d",
-]
-
-
-class KF1DCycle(NamedTuple):
-    """Every intermediate quantity of one scalar predict/update cycle."""
-
-    mu_bar: float  #: predicted mean
-    var_bar: float  #: predicted variance
-    innovation: float  #: z - c mu_bar
-    K: float  #: Kalman gain
-    mu: float  #: updated mean
-    var: float  #: updated variance
-
-
-def kf_1d_predict(mu, var, u, a=1.0, b=1.0, R=0.2) -> tuple[float, float]:
-    r"""Scalar Kalman predict step: move the belief and grow its variance.
-
-    .. math:: \bar\mu = a\mu + bu, \qquad \bar\sigma^2 = a^2\sigma^2 + \sigma_R^2
-
-    Introduced in chapter 3.
-
-    Parameters
-    ----------
-    mu, var : float
-        Prior mean and variance (``var >= 0``).
-    u : float
-        Control (commanded move).
-    a, b : float
-        Motion and control coefficients.
-    R : float
-        Process (motion) noise variance, ``>= 0``.
-
-    Returns
-    -------
-    (mu_bar, var_bar) : floats
-        Predicted mean and variance.
-    """
-    mu = v.scalar(mu, "mu")
-    var = v.variance(var, "var")
-    u = v.scalar(u, "u")
-    a, b = v.scalar(a, "a"), v.scalar(b, "b")
-    R = v.variance(R, "R")
-    mu_bar = a * mu + b * u  # predict mean: mu_bar = a mu + b u
-    var_bar = a * a * var + R  # predict variance: var_bar = a^2 var + R
-    return mu_bar, var_bar
-
-
-def kf_1d_gain(var_bar, c=1.0, Q=0.1) -> float:
-    r"""Scalar Kalman gain: how far the update moves toward the measurement.
-
-    .. math:: K = \frac{c\,\bar\sigma^2}{c^2\bar\sigma^2 + \sigma_Q^2}
-
-    With ``c = 1``, ``K`` is near 1 when the prediction is much less certain than
-    the sensor and near 0 when it is much more certain.  Introduced in chapter 3.
-
-    Parameters
-    ----------
-    var_bar : float
-        Predicted variance, ``>= 0``.
-    c : float
-        Measurement coefficient.
-    Q : float
-        Measurement noise variance, ``>= 0`` (``> 0`` when ``c^2 var_bar`` is 0).
-
-    Returns
-    -------
-    K : float
-    """
-    var_bar = v.variance(var_bar, "var_bar")
-    c = v.scalar(c, "c")
-    Q = v.variance(Q, "Q")
-    denom = c * c * var_bar + Q  # c^2 var_bar + Q
-    if denom <= 0:
-        raise ValueError("Q must be > 0 when the predicted variance c^2 var_bar is 0")
-    return c * var_bar / denom  # gain: K = c var_bar / (c^2 var_bar + Q)
-
-
-def kf_1d_update(mu_bar, var_bar, z, c=1.0, Q=0.1) -> tuple[float, float]:
-    r"""Scalar Kalman update step: blend the prediction with a measurement.
-
-    .. math:: \mu = \bar\mu + K(z - c\bar\mu), \qquad \sigma^2 = (1 - Kc)\,\bar\sigma^2
-
-    with ``K`` from :func:`kf_1d_gain`.  Introduced in chapter 3.
-
-    Parameters
-    ----------
-    mu_bar, var_bar : float
-        Predicted mean and variance (``var_bar >= 0``).
-    z : float
-        Measurement.
-    c : float
-        Measurement coefficient.
-    Q : float
-        Measurement noise variance, ``>= 0``.
-
-    Returns
-    -------
-    (mu, var) : floats
-        Updated mean and variance.
-    """
-    mu_bar = v.scalar(mu_bar, "mu_bar")
-    var_bar = v.variance(var_bar, "var_bar")
-    z = v.scalar(z, "z")
-    c = v.scalar(c, "c")
-    K = kf_1d_gain(var_bar, c, Q)  # gain: K = c var_bar / (c^2 var_bar + Q)
-    innovation = z - c * mu_bar  # innovation: the surprise z - c mu_bar
-    mu = mu_bar + K * innovation  # update mean
-    var = (1.0 - K * c) * var_bar  # update variance
-    return mu, max(var, 0.0)
-
-
-def kf_1d_cycle(mu, var, u, z, a=1.0, b=1.0, c=1.0, R=0.2, Q=0.1) -> KF1DCycle:
-    r"""One scalar Kalman cycle, returning every intermediate quantity.
-
-    .. math::
-        \bar\mu = a\mu + bu,\quad \bar\sigma^2 = a^2\sigma^2 + \sigma_R^2,\quad
-        K = \frac{c\,\bar\sigma^2}{c^2\bar\sigma^2 + \sigma_Q^2},\quad
-        \mu' = \bar\mu + K(z - c\bar\mu),\quad \sigma'^2 = (1 - Kc)\,\bar\sigma^2
-
-    Built from :func:`kf_1d_predict`, :func:`kf_1d_gain` and :func:`kf_1d_update`.
-    Introduced in chapter 3.
-
-    Parameters
-    ----------
-    mu, var : float
-        Prior mean and variance (``var >= 0``).
-    u : float
-        Control (commanded move).
-    z : float or None
-        Measurement; ``None`` skips the update (a predict-only tick, ``K = 0``).
-    a, b, c : float
-        Motion, control and measurement coefficients.
-    R : float
-        Process (motion) noise variance, ``>= 0``.
-    Q : float
-        Measurement noise variance, ``>= 0``.
-
-    Returns
-    -------
-    KF1DCycle
-    """
-    mu_bar, var_bar = kf_1d_predict(mu, var, u, a, b, R)
-    c, Q = v.scalar(c, "c"), v.variance(Q, "Q")  # checked even on a predict-only tick
-    if z is None:
-        return KF1DCycle(mu_bar, var_bar, 0.0, 0.0, mu_bar, var_bar)
-    z = v.scalar(z, "z")
-    K = kf_1d_gain(var_bar, c, Q)
-    mu_new, var_new = kf_1d_update(mu_bar, var_bar, z, c, Q)
-    return KF1DCycle(mu_bar, var_bar, z - c * mu_bar, K, mu_new, var_new)
-
-
-def kf_1d_step(mu, var, u, z, a=1.0, b=1.0, c=1.0, R=0.2, Q=0.1) -> tuple[float, float]:
-    """One scalar Kalman predict/update cycle, as in the lesson.
-
-    :func:`kf_1d_predict` then :func:`kf_1d_update`.  Introduced in chapter 3.
-    See :func:`kf_1d_cycle` for the equations and the parameters; this returns
-    only the posterior.
-
-    Returns
-    -------
-    (mu, var) : floats
-    """
-    mu_bar, var_bar = kf_1d_predict(mu, var, u, a, b, R)
-    c, Q = v.scalar(c, "c"), v.variance(Q, "Q")  # checked even on a predict-only tick
-    if z is None:
-        return mu_bar, var_bar
-    return kf_1d_update(mu_bar, var_bar, z, c, Q)
-
-
-def steady_state_1d(R, Q, a=1.0, c=1.0) -> tuple[float, float, float]:
-    r"""Steady-state gain and variances of the scalar filter (scalar Riccati equation).
-
-    At the fixed point the prior variance :math:`P` satisfies
-
-    .. math:: P = a^2\,\frac{P\,Q}{c^2 P + Q} + R
-        \;\Longleftrightarrow\;
-        c^2 P^2 + \left(Q(1 - a^2) - R c^2\right) P - R Q = 0,
-
-    whose non-negative root is taken; then :math:`K = cP/(c^2P+Q)` and the
-    posterior variance is :math:`(1 - Kc)P`.  Introduced in chapter 4.
-
-    Parameters
-    ----------
-    R : float
-        Process noise variance, >= 0.
-    Q : float
-        Measurement noise variance, >= 0 (not both zero).
-    a, c : float
-        Motion and measurement coefficients.
-
-    Returns
-    -------
-    (K, var_prior, var_post) : floats
-    """
-    R = v.variance(R, "R")
-    Q = v.variance(Q, "Q")
-    a, c = v.scalar(a, "a"), v.scalar(c, "c")
-    if R == 0 and Q == 0:
-        raise ValueError("R and Q must not both be 0 (the gain is undefined)")
-    if c == 0:
-        if abs(a) >= 1:
-            raise ValueError("c must be non-zero unless |a| < 1: with no measurement the variance grows forever")
-        P = R / (1.0 - a * a)
-        return 0.0, P, P
-    beta = Q * (1.0 - a * a) - R * c * c  # linear coefficient of the quadratic
-    root = math.sqrt(beta * beta + 4.0 * c * c * R * Q)
-    P = (root - beta) / (2 * c * c) if beta <= 0 else 2 * R * Q / (root + beta)  # stable root
-    K = c * P / (c * c * P + Q)  # steady-state gain
-    return K, P, (1.0 - K * c) * P
+__all__ = ["kf_gain", "kf_predict", "kf_step", "kf_update"]
 
 
 # ---------------------------------------------------------------- matrix form
-def _check_inputs(mu, Sig, u, F, B, R, z=None, H=None, Q=None):
-    """Check the inputs of a predict step, and of the update after it when ``z`` is given.
+# Equations (1)-(5) of chapter 5.  Each function below checks every input first, then writes
+# its equations one per line, numbered as in the chapter.
 
-    Every input is checked once, up front; the covariances (Sig, R and, with a
-    measurement, Q) together, by one factorisation (see ``_validate.covariances``).
-    Returns ``mu, Sig, u, F, B, R, z, H, Q`` as float arrays (``u, B`` stay None
-    with no control, ``z, H, Q`` with no measurement).
-    """
+SINGULAR_S = "Q: the innovation covariance S = H Sig_bar H^T + Q is singular, so the gain S^-1 is undefined"
+
+
+def _predict_inputs(mu, Sig, u, F, B, R):
+    """``mu, Sig, u, F, B, R`` checked, as float arrays; no control (``u`` and ``B`` None) becomes ``B u = 0``."""
     mu = v.vector(mu, "mu")
     n = mu.size
     F = v.matrix(F, "F", n, n)
     if (B is None) != (u is None):
         raise ValueError("u and B must be given together (or both None for no control)")
-    if u is not None:
-        u = v.vector(u, "u")
-        B = v.matrix(B, "B", n, u.size)
-    if z is None:
-        Sig, R = v.covariances((Sig, "Sig", n), (R, "R", n))
-        return mu, Sig, u, F, B, R, None, None, None
+    u = np.zeros(0) if u is None else v.vector(u, "u")
+    B = np.zeros((n, 0)) if B is None else v.matrix(B, "B", n, u.size)
+    return mu, v.covariance(Sig, "Sig", n), u, F, B, v.covariance(R, "R", n)
+
+
+def _update_inputs(mu_bar, Sig_bar, z, H, Q):
+    """``mu_bar, Sig_bar, z, H, Q`` checked, as float arrays."""
+    mu_bar = v.vector(mu_bar, "mu_bar")
+    Sig_bar = v.covariance(Sig_bar, "Sig_bar", mu_bar.size)
     z = v.vector(z, "z")
-    H = v.matrix(H, "H", z.size, n)
-    Sig, R, Q = v.covariances((Sig, "Sig", n), (R, "R", n), (Q, "Q", z.size))
-    return mu, Sig, u, F, B, R, z, H, Q
-
-
-# The helpers below take checked arrays and write A.dot(B) for the product A @ B
-# (on small matrices it costs half as much).
-def _predict(mu, Sig, u, F, B, R):
-    """The predict equations; Sig_bar is symmetric only up to rounding (kf_predict
-    symmetrises it, kf_step passes it straight to the update)."""
-    mu_bar = F.dot(mu)  # mu_bar = F mu + B u
-    if B is not None:
-        mu_bar = mu_bar + B.dot(u)
-    Sig_bar = F.dot(Sig).dot(F.T) + R  # Sig_bar = F Sig F^T + R
-    return mu_bar, Sig_bar
-
-
-def _update(mu_bar, Sig_bar, z, H, Q):
-    """The update equations."""
-    Sig_xz = Sig_bar.dot(H.T)  # cross-covariance of state and measurement, Sig_bar H^T
-    S = H.dot(Sig_xz) + Q  # S = H Sig_bar H^T + Q
-    K = gain(Sig_xz, S)  # K = Sig_bar H^T S^-1
-    y = z - H.dot(mu_bar)  # innovation y = z - H mu_bar
-    return joseph_correct(mu_bar, Sig_bar, y, H, Q, K)
+    return mu_bar, Sig_bar, z, v.matrix(H, "H", z.size, mu_bar.size), v.covariance(Q, "Q", z.size)
 
 
 def kf_predict(mu, Sig, u, F, B, R) -> tuple[np.ndarray, np.ndarray]:
-    r"""Kalman predict step.
+    r"""Kalman predict step, equations (1) and (2) of chapter 5.
 
     .. math:: \bar\mu = F\mu + Bu, \qquad \bar\Sigma = F\Sigma F^\top + R
 
@@ -309,13 +64,14 @@ def kf_predict(mu, Sig, u, F, B, R) -> tuple[np.ndarray, np.ndarray]:
     -------
     (mu_bar, Sig_bar) : shapes (n,), (n, n)
     """
-    mu, Sig, u, F, B, R, _, _, _ = _check_inputs(mu, Sig, u, F, B, R)
-    mu_bar, Sig_bar = _predict(mu, Sig, u, F, B, R)
-    return mu_bar, symmetric(Sig_bar)
+    mu, Sig, u, F, B, R = _predict_inputs(mu, Sig, u, F, B, R)
+    mu_bar = F @ mu + B @ u  # (1) predict mean
+    Sig_bar = F @ Sig @ F.T + R  # (2) predict covariance
+    return mu_bar, (Sig_bar + Sig_bar.T) / 2  # symmetric, also in the last bit
 
 
 def kf_gain(Sig_bar, H, Q) -> tuple[np.ndarray, np.ndarray]:
-    r"""Innovation covariance and Kalman gain.
+    r"""Innovation covariance and Kalman gain, equation (3) of chapter 5.
 
     .. math:: S = H\bar\Sigma H^\top + Q, \qquad K = \bar\Sigma H^\top S^{-1}
 
@@ -331,24 +87,29 @@ def kf_gain(Sig_bar, H, Q) -> tuple[np.ndarray, np.ndarray]:
     -------
     (S, K) : shapes (k, k), (n, k)
     """
-    Sig_bar = v.matrix(Sig_bar, "Sig_bar")  # its size, for H; checked in full with Q below
+    Sig_bar = v.covariance(Sig_bar, "Sig_bar")
     H = v.matrix(H, "H", None, Sig_bar.shape[0])
-    Sig_bar, Q = v.covariances((Sig_bar, "Sig_bar", None), (Q, "Q", H.shape[0]))
-    S = innovation_covariance(Sig_bar, H, Q)
-    return S, gain(Sig_bar @ H.T, S)
+    Q = v.covariance(Q, "Q", H.shape[0])
+    S = H @ Sig_bar @ H.T + Q  # (3) innovation covariance
+    try:
+        K = Sig_bar @ H.T @ np.linalg.inv(S)  # (3) Kalman gain
+    except np.linalg.LinAlgError:
+        raise ValueError(SINGULAR_S) from None
+    return S, K
 
 
 def kf_update(mu_bar, Sig_bar, z, H, Q) -> tuple[np.ndarray, np.ndarray]:
-    r"""Kalman update (correction) step.
+    r"""Kalman update (correction) step, equations (3) to (5) of chapter 5.
 
     .. math::
         K = \bar\Sigma H^\top (H\bar\Sigma H^\top + Q)^{-1},\quad
         \mu = \bar\mu + K(z - H\bar\mu),\quad
         \Sigma = (I - KH)\bar\Sigma
 
-    The covariance is computed in the equivalent Joseph form
-    :math:`(I-KH)\bar\Sigma(I-KH)^\top + KQK^\top`, which stays symmetric positive
-    semi-definite under rounding.  Introduced in chapter 5.
+    Equation (5) is computed in its Joseph form
+    :math:`(I-KH)\bar\Sigma(I-KH)^\top + KQK^\top`: equal for the optimal gain, and a sum
+    of two products of the form :math:`A M A^\top`, so it stays symmetric and keeps
+    rounding from pushing an eigenvalue far below zero.  Introduced in chapter 5.
 
     Parameters
     ----------
@@ -364,23 +125,57 @@ def kf_update(mu_bar, Sig_bar, z, H, Q) -> tuple[np.ndarray, np.ndarray]:
     -------
     (mu, Sig) : shapes (n,), (n, n)
     """
-    mu_bar, Sig_bar, z, Q = v.update_inputs(mu_bar, Sig_bar, z, Q)
-    H = v.matrix(H, "H", z.size, mu_bar.size)
-    return _update(mu_bar, Sig_bar, z, H, Q)
+    mu_bar, Sig_bar, z, H, Q = _update_inputs(mu_bar, Sig_bar, z, H, Q)
+    S = H @ Sig_bar @ H.T + Q  # (3) innovation covariance
+    try:
+        K = Sig_bar @ H.T @ np.linalg.inv(S)  # (3) Kalman gain
+    except np.linalg.LinAlgError:
+        raise ValueError(SINGULAR_S) from None
+    mu = mu_bar + K @ (z - H @ mu_bar)  # (4) update mean by the innovation z - H mu_bar
+    I_KH = np.eye(mu_bar.size) - K @ H
+    Sig = I_KH @ Sig_bar @ I_KH.T + K @ Q @ K.T  # (5) update covariance, Joseph form of (I - K H) Sig_bar
+    return mu, (Sig + Sig.T) / 2
 
 
 def kf_step(mu, Sig, u, z, F, B, H, R, Q) -> tuple[np.ndarray, np.ndarray]:
-    """One full Kalman cycle: :func:`kf_predict` then :func:`kf_update`.
+    r"""One full Kalman cycle, equations (1) to (5) of chapter 5.
 
-    Introduced in chapter 5.  Shapes as in those two functions; ``z=None`` skips
-    the update.
+    .. math::
+        \bar\mu = F\mu + Bu,\quad \bar\Sigma = F\Sigma F^\top + R,\quad
+        K = \bar\Sigma H^\top (H\bar\Sigma H^\top + Q)^{-1},\quad
+        \mu' = \bar\mu + K(z - H\bar\mu),\quad \Sigma' = (I - KH)\bar\Sigma
+
+    :func:`kf_predict` then :func:`kf_update` in one function, equation (5) in its Joseph
+    form (see :func:`kf_update`).  Introduced in chapter 5.
+
+    Parameters
+    ----------
+    mu, Sig, u, F, B, R
+        As in :func:`kf_predict`.
+    z : array_like, shape (k,), or None
+        The reading; ``None`` skips the update (a predict-only tick).
+    H, Q
+        As in :func:`kf_update`.
 
     Returns
     -------
     (mu, Sig) : shapes (n,), (n, n)
     """
-    mu, Sig, u, F, B, R, z, H, Q = _check_inputs(mu, Sig, u, F, B, R, z, H, Q)
-    mu_bar, Sig_bar = _predict(mu, Sig, u, F, B, R)
+    mu, Sig, u, F, B, R = _predict_inputs(mu, Sig, u, F, B, R)
+    if z is not None:
+        z = v.vector(z, "z")
+        H, Q = v.matrix(H, "H", z.size, mu.size), v.covariance(Q, "Q", z.size)
+
+    mu_bar = F @ mu + B @ u  # (1) predict mean
+    Sig_bar = F @ Sig @ F.T + R  # (2) predict covariance
     if z is None:
-        return mu_bar, symmetric(Sig_bar)
-    return _update(mu_bar, Sig_bar, z, H, Q)
+        return mu_bar, (Sig_bar + Sig_bar.T) / 2
+    S = H @ Sig_bar @ H.T + Q  # (3) innovation covariance
+    try:
+        K = Sig_bar @ H.T @ np.linalg.inv(S)  # (3) Kalman gain
+    except np.linalg.LinAlgError:
+        raise ValueError(SINGULAR_S) from None
+    mu_new = mu_bar + K @ (z - H @ mu_bar)  # (4) update mean by the innovation z - H mu_bar
+    I_KH = np.eye(mu.size) - K @ H
+    Sig_new = I_KH @ Sig_bar @ I_KH.T + K @ Q @ K.T  # (5) update covariance, Joseph form of (I - K H) Sig_bar
+    return mu_new, (Sig_new + Sig_new.T) / 2

@@ -245,7 +245,7 @@ def ukf_predict(
     """
     mu = v.vector(mu, "mu")
     n = mu.size
-    Sig, R = v.covariances((Sig, "Sig", n), (R, "R", n))  # both at once
+    Sig, R = v.covariance(Sig, "Sig", n), v.covariance(R, "R", n)
     g = v.function(g, "g")
     residual, mean = v.optional_function(residual, "residual"), v.optional_function(mean, "mean")
     lam, beta = v.scalar(lam, "lam"), v.scalar(beta, "beta")

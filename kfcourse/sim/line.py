@@ -7,7 +7,7 @@ from dataclasses import dataclass
 import numpy as np
 
 from .. import _validate as v
-from ..filters.kalman import kf_1d_cycle
+from ..filters.kalman_1d import kf_1d_cycle
 from .records import read_only
 
 
