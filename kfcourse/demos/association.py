@@ -2,6 +2,8 @@
 
 from __future__ import annotations
 
+from collections.abc import Callable
+
 import ipywidgets as widgets
 import numpy as np
 from matplotlib.collections import LineCollection
@@ -75,15 +77,14 @@ def _readout(model: AssociationModel) -> str:
     )
 
 
-def data_association(seed: int = 0) -> Demo:
-    """Demo "data association" (chapter 8): a scan of unlabelled readings, the map, and a
-    validation gate that decides which readings are landmarks.
+def _picture(model: AssociationModel) -> tuple[FigureRenderer, Callable[[], None]]:
+    """The map, the predicted pose, the gates, the scan's readings and the estimate after them.
 
     Returns
     -------
-    Demo (an ipywidgets.VBox)
+    (renderer, draw)
+        ``draw()`` moves the gates, readings and estimate to the model's gate and scan.
     """
-    model = AssociationModel(seed=seed)
     scan = model.scan
     fig, ax = new_figure(6.2, 5.4)
     ax.set_xlim(*X_LIM)
@@ -97,7 +98,7 @@ def data_association(seed: int = 0) -> Demo:
     robot(ax, scan.mu_bar, color=palette.PREDICTION, size=ROBOT_SIZE, alpha=0.8, zorder=3)
     covariance_ellipse(ax, scan.mu_bar, scan.Sig_bar[:2, :2], nsig=2.0, color=palette.PREDICTION, lw=1.5)
 
-    # Dynamic: gates, links reading -> landmark, readings, the leg's label, the estimate, the readout.
+    # Dynamic: gates, links reading -> landmark, readings, the leg's label, the estimate.
     gates = LineCollection([], colors=palette.PREDICTION, lw=1.0, linestyles="--", alpha=0.8, zorder=1)
     ax.add_collection(gates, autolim=False)
     beams = LineCollection([], colors=palette.MEASUREMENT, lw=0.8, alpha=0.3, zorder=1)
@@ -112,8 +113,6 @@ def data_association(seed: int = 0) -> Demo:
     # hides it, and the estimate's ellipse over both, so it shows even when it is smaller than the triangle.
     truth = robot(ax, scan.truth, color=palette.TRUTH, size=ROBOT_SIZE, facecolor="none", lw=2.0, zorder=6)
     estimate_ellipse = covariance_ellipse(ax, scan.mu_bar, scan.Sig_bar[:2, :2], nsig=2.0, lw=2.0, zorder=7)
-    readout = widgets.HTML()  # text under the picture: no glyphs to render into the PNG
-    readout.add_class("kf-readout")
     renderer = FigureRenderer(fig, [gates, beams, links, used, unused, leg_label, estimate, truth, estimate_ellipse])
 
     def draw() -> None:
@@ -132,6 +131,25 @@ def data_association(seed: int = 0) -> Demo:
             leg_label.set_position(points[-1] + [0.12, 0.05])
         update_robot(estimate, res.mu)
         update_covariance_ellipse(estimate_ellipse, res.mu, res.Sig[:2, :2])
+
+    return renderer, draw
+
+
+def data_association(seed: int = 0) -> Demo:
+    """Demo "data association" (chapter 8): a scan of unlabelled readings, the map, and a
+    validation gate that decides which readings are landmarks.
+
+    Returns
+    -------
+    Demo (an ipywidgets.VBox)
+    """
+    model = AssociationModel(seed=seed)
+    renderer, draw_picture = _picture(model)
+    readout = widgets.HTML()  # text under the picture: no glyphs to render into the PNG
+    readout.add_class("kf-readout")
+
+    def draw() -> None:
+        draw_picture()
         readout.value = _readout(model)
 
     caption = (

@@ -2,8 +2,11 @@
 
 from __future__ import annotations
 
+from collections.abc import Callable
+
 import ipywidgets as widgets
 import numpy as np
+from matplotlib.lines import Line2D
 from matplotlib.patches import Rectangle
 from matplotlib.ticker import FormatStrFormatter, MaxNLocator
 
@@ -92,29 +95,42 @@ class HallwayModel:
         self.boundary = boundary
 
 
-def hallway(seed: int = 0) -> Demo:
-    """Demo "histogram hallway" (chapter 1): Predict shifts and blurs the bars,
-    Update multiplies by the door sensor's likelihood and renormalises.
+def _status(model: HallwayModel) -> str:
+    """The text at the top right: what the last button did, and the belief's total."""
+    left, right = ("door" if seen else "no door" for seen in model.saw_door)
+    if model.phase == "predicted":
+        moves = f"{model.steps} move{'s' if model.steps != 1 else ''} since Reset"
+        text = rf"after Predict ({moves}): $\overline{{bel}}$ is shifted and blurred"
+    else:
+        text = f"after Update: left “{left}”, right “{right}”, η = {model.eta:.2f}"
+        if model.likelihood_is_stale():
+            text = f"{text}\norange: at the new reliability, not used yet"
+    return f"{text}\nΣ bel = {model.belief.sum():.3f}"
+
+
+def _setup(model: HallwayModel) -> str:
+    """The text at the top left: the motion kernel, the sensor's reliability and the corridor's ends."""
+    k = motion_kernel(model.motion_reliability)
+    ends = "loop (wrap)" if model.boundary == "wrap" else "walls"
+    return (
+        f"motion: one cell right {k[1]:.2f}, stall {k[0]:.2f}\n"
+        f"each wall read right {model.sensor_reliability:.2f} of the time\nends: {ends}"
+    )
+
+
+def _hallway_map(ax_map, model: HallwayModel) -> tuple[list, Line2D]:
+    """The hallway map: the upper wall is on the robot's left (it drives right), the lower wall on its right.
 
     Returns
     -------
-    Demo (an ipywidgets.VBox)
+    (end_walls, robot)
+        The walls at both ends (shown when the corridor has walls) and the true robot's marker.
     """
-    model = HallwayModel(seed)
-    fig, (ax, ax_map, ax_lik) = new_figure(8.0, 4.8, nrows=3, sharex=True, gridspec_kw={"height_ratios": [3, 0.7, 1.1]})
-    cells = np.arange(N_CELLS)
-    ax.set_xlim(-0.6, N_CELLS - 0.4)
-    ax.set_ylim(0, 1.0)
-    ax.set_ylabel("belief  bel(x)")
-    ax.yaxis.set_major_formatter(FormatStrFormatter("%.2f"))  # labels of one width: the layout, found once, fits all
-    bars = belief_bars(ax, model.belief)
-    status = ax.text(0.99, 0.97, "", transform=ax.transAxes, ha="right", va="top", fontsize=10)
-    setup = ax.text(0.01, 0.97, "", transform=ax.transAxes, ha="left", va="top", fontsize=9, color=palette.INK)
-    # The hallway map: the upper wall is on the robot's left (it drives right), the lower wall on its right.
     ax_map.set_ylim(0, 1)
     ax_map.set_yticks([0.9, 0.1], ["left wall", "right wall"], fontsize=8)
     ax_map.tick_params(axis="y", length=0)
     ax_map.grid(False)
+    cells = np.arange(N_CELLS)
     for side, y in ((0, 0.8), (1, 0.0)):
         ax_map.axhline(y + 0.1, color=palette.INK, lw=1.2, zorder=1)
         for c in cells[model.doors[side]]:
@@ -122,10 +138,30 @@ def hallway(seed: int = 0) -> Demo:
     end_walls = [ax_map.axvline(x, color=palette.INK, lw=4, zorder=2) for x in (-0.5, N_CELLS - 0.5)]
     (robot,) = ax_map.plot([model.true_cell], [0.5], marker=">", ms=13, color=palette.TRUTH, zorder=3)
     robot.set_markeredgecolor("#666666")
+    return end_walls, robot
+
+
+def _picture(model: HallwayModel) -> tuple[FigureRenderer, Callable[[], None]]:
+    """The belief's bars over the hallway map, and the sensor's likelihood under it.
+
+    Returns
+    -------
+    (renderer, draw)
+        ``draw()`` shows the model's belief, true cell, likelihood and settings.
+    """
+    fig, (ax, ax_map, ax_lik) = new_figure(8.0, 4.8, nrows=3, sharex=True, gridspec_kw={"height_ratios": [3, 0.7, 1.1]})
+    ax.set_xlim(-0.6, N_CELLS - 0.4)
+    ax.set_ylim(0, 1.0)
+    ax.set_ylabel("belief  bel(x)")
+    ax.yaxis.set_major_formatter(FormatStrFormatter("%.2f"))  # labels of one width: the layout, found once, fits all
+    bars = belief_bars(ax, model.belief)
+    status = ax.text(0.99, 0.97, "", transform=ax.transAxes, ha="right", va="top", fontsize=10)
+    setup = ax.text(0.01, 0.97, "", transform=ax.transAxes, ha="left", va="top", fontsize=9, color=palette.INK)
+    end_walls, robot = _hallway_map(ax_map, model)
     ax_lik.set_ylim(0, 1.05)
     ax_lik.set_ylabel("p(z | x)")
     ax_lik.set_xlabel("cell   (brown: doors on the left and right wall; grey arrow: the true robot)")
-    ax_lik.set_xticks(cells)
+    ax_lik.set_xticks(np.arange(N_CELLS))
     lik_bars = belief_bars(ax_lik, model.likelihood, color=palette.MEASUREMENT)
     dynamic = [*bars, robot, status, setup, *lik_bars, *end_walls]
     renderer = FigureRenderer(fig, dynamic)
@@ -148,22 +184,22 @@ def hallway(seed: int = 0) -> Demo:
         update_belief_bars(lik_bars, model.likelihood)
         for bar in lik_bars:
             bar.set_alpha(0.35 if model.phase == "predicted" else 1.0)
-        left, right = ("door" if seen else "no door" for seen in model.saw_door)
-        if model.phase == "predicted":
-            moves = f"{model.steps} move{'s' if model.steps != 1 else ''} since Reset"
-            text = rf"after Predict ({moves}): $\overline{{bel}}$ is shifted and blurred"
-        else:
-            text = f"after Update: left “{left}”, right “{right}”, η = {model.eta:.2f}"
-            if model.likelihood_is_stale():
-                text = f"{text}\norange: at the new reliability, not used yet"
-        status.set_text(f"{text}\nΣ bel = {model.belief.sum():.3f}")
-        k = motion_kernel(model.motion_reliability)
-        ends = "loop (wrap)" if model.boundary == "wrap" else "walls"
-        setup.set_text(
-            f"motion: one cell right {k[1]:.2f}, stall {k[0]:.2f}\n"
-            f"each wall read right {model.sensor_reliability:.2f} of the time\nends: {ends}"
-        )
+        status.set_text(_status(model))
+        setup.set_text(_setup(model))
 
+    return renderer, draw
+
+
+def hallway(seed: int = 0) -> Demo:
+    """Demo "histogram hallway" (chapter 1): Predict shifts and blurs the bars,
+    Update multiplies by the door sensor's likelihood and renormalises.
+
+    Returns
+    -------
+    Demo (an ipywidgets.VBox)
+    """
+    model = HallwayModel(seed)
+    renderer, draw = _picture(model)
     boundary = widgets.ToggleButtons(options=["wrap", "wall"], value=model.boundary, description="ends:")
     boundary.style.button_width = "60px"
     caption = (

@@ -116,6 +116,45 @@ def _readout(model: LoopModel) -> str:
     )
 
 
+def _controls(model: LoopModel, kidnap: widgets.Button) -> dict:
+    """The noise sliders, the dropout toggle, the filter's choice and the ``kidnap`` button, bound to the model.
+
+    Each noise change reruns the whole lap (30 to 60 ms): once, where the slider is let go.
+    """
+    lo, hi = NOISE_RANGE
+    return {
+        "motion": (
+            slider(widgets.FloatLogSlider, "process noise ×", 1.0, lo, hi, 0.05, ".2g", False, base=10),
+            model.set_motion_noise,
+        ),
+        "sensor": (
+            slider(widgets.FloatLogSlider, "measurement noise ×", 1.0, lo, hi, 0.05, ".2g", False, base=10),
+            model.set_sensor_noise,
+        ),
+        "dropout": (
+            widgets.ToggleButton(
+                value=False,
+                description="sensor dropout",
+                icon="eye-slash",
+                tooltip=f"Blind the sensor for steps {DROPOUT[0]} to {DROPOUT[1] - 1}",
+                layout=widgets.Layout(width="150px"),
+            ),
+            model.set_dropout,
+        ),
+        "filter": (
+            widgets.ToggleButtons(
+                options=list(FILTERS),
+                tooltips=["extended Kalman filter: Jacobians", "unscented Kalman filter: sigma points"],
+                value=model.filter.upper(),
+                description="filter",
+                style={"button_width": "60px", "description_width": "40px"},
+            ),
+            model.set_filter,
+        ),
+        "kidnap": (kidnap, model.toggle_kidnap),
+    }
+
+
 def landmark_loop(seed: int = 0) -> Demo:
     """Demo "landmark loop" (chapter 10): EKF (or UKF) localization round a map of landmarks.
 
@@ -154,7 +193,6 @@ def landmark_loop(seed: int = 0) -> Demo:
         f"blinds steps {DROPOUT[0]}–{DROPOUT[1] - 1}; <i>filter</i>: EKF or UKF on the same noise; <i>Kidnap</i> moves "
         "the true robot half a lap on at this step."
     )
-    lo, hi = NOISE_RANGE
     demo = Demo(
         name="landmark-loop",
         caption=caption,
@@ -162,37 +200,7 @@ def landmark_loop(seed: int = 0) -> Demo:
         renderer=renderer,
         draw=draw,
         frames=model.run.t.size,
-        controls={  # each noise change reruns the whole lap (30 to 60 ms): once where the slider is let go
-            "motion": (
-                slider(widgets.FloatLogSlider, "process noise ×", 1.0, lo, hi, 0.05, ".2g", False, base=10),
-                model.set_motion_noise,
-            ),
-            "sensor": (
-                slider(widgets.FloatLogSlider, "measurement noise ×", 1.0, lo, hi, 0.05, ".2g", False, base=10),
-                model.set_sensor_noise,
-            ),
-            "dropout": (
-                widgets.ToggleButton(
-                    value=False,
-                    description="sensor dropout",
-                    icon="eye-slash",
-                    tooltip=f"Blind the sensor for steps {DROPOUT[0]} to {DROPOUT[1] - 1}",
-                    layout=widgets.Layout(width="150px"),
-                ),
-                model.set_dropout,
-            ),
-            "filter": (
-                widgets.ToggleButtons(
-                    options=list(FILTERS),
-                    tooltips=["extended Kalman filter: Jacobians", "unscented Kalman filter: sigma points"],
-                    value=model.filter.upper(),
-                    description="filter",
-                    style={"button_width": "60px", "description_width": "40px"},
-                ),
-                model.set_filter,
-            ),
-            "kidnap": (kidnap, model.toggle_kidnap),
-        },
+        controls=_controls(model, kidnap),
         layout=[readout, ["play", "frame"], ["motion", "sensor"], ["dropout", "kidnap"], "filter"],
         display_width=IMAGE_WIDTH,
     )

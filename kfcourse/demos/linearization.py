@@ -2,6 +2,8 @@
 
 from __future__ import annotations
 
+from collections.abc import Callable
+
 import ipywidgets as widgets
 import numpy as np
 
@@ -130,15 +132,32 @@ def show_output_axis(ax_f, y_labels, ticks) -> tuple[float, float]:
     return lo, hi
 
 
-def linearization(seed: int = 0) -> Demo:
-    """Demo "linearization" (chapter 7): a Gaussian through x², sin x or a range,
-    the sampled truth against the EKF's tangent-line Gaussian.
+def sideways_histogram(y, lo: float, hi: float, bins: int) -> tuple[np.ndarray, np.ndarray, float]:
+    """The samples ``y`` as a histogram on ``bins`` fixed bins over the output axis ``lo`` to ``hi``, drawn
+    sideways (density along x, output along y) and divided by its peak, as the demos of chapters 7 and 9 show it.
 
     Returns
     -------
-    Demo (an ipywidgets.VBox)
+    (density, output, peak)
+        The outline's x and y coordinates, and the sampled peak it was divided by (the demos divide
+        their other output densities by it too).
     """
-    model = LinearizationModel(seed=seed)
+    edges = np.linspace(lo, hi, bins + 1)
+    counts, _ = np.histogram(y, bins=edges)
+    dens = counts / (y.size * (edges[1] - edges[0]))
+    peak = max(float(dens.max()), 1e-12)
+    return np.concatenate([[0.0], np.repeat(dens / peak, 2), [0.0]]), np.repeat(edges, 2), peak
+
+
+def _picture(model: LinearizationModel) -> tuple[FigureRenderer, Callable[[], None]]:
+    """The curve f and its tangent at m over the input density, the two output densities beside them,
+    and the numbers under those.
+
+    Returns
+    -------
+    (renderer, draw)
+        ``draw()`` shows the model's function, input and outputs.
+    """
     fig, ax_f, ax_out, ax_in, ax_txt, y_labels = function_panels(
         8.0, 5.4, X_RANGE, FUNCTIONS[model.function][2], width_ratio=1.3, height_ratio=1.1
     )
@@ -168,20 +187,16 @@ def linearization(seed: int = 0) -> Demo:
         tangent.set_ydata(fm + slope * (x - m))  # f(m) + f'(m) (x - m)
         point.set_data([m], [fm])
         inp.set_ydata(np.exp(-0.5 * (x - m) ** 2 / (s * s)))  # N(m, s^2) divided by its peak
-        # The sampled output as a sideways histogram on fixed bins over the output axis.
         y = model.samples()
-        edges = np.linspace(lo, hi, N_BINS + 1)
-        counts, _ = np.histogram(y, bins=edges)
-        dens = counts / (y.size * (edges[1] - edges[0]))
+        hist_x, hist_y, top_out = sideways_histogram(y, lo, hi, N_BINS)  # both output densities are divided by top_out
         mean_y, var_y = float(y.mean()), float(y.var())
         mean_e, var_e = model.ekf()
-        top_out = max(float(dens.max()), 1e-12)  # the sampled peak: both output densities are divided by it
         grid = np.linspace(lo, hi, 600)
         if var_e > 1e-12 * (hi - lo) ** 2:
             ekf.set_data(np.minimum(gaussian_pdf(grid, mean_e, var_e) / top_out, 2.0), grid)
         else:  # f'(m) = 0: the EKF claims no spread at all, a spike at f(m)
             ekf.set_data([0.0, 0.0, 2.0, 0.0, 0.0], [lo, mean_e, mean_e, mean_e, hi])
-        hist.set_data(np.concatenate([[0.0], np.repeat(dens / top_out, 2), [0.0]]), np.repeat(edges, 2))
+        hist.set_data(hist_x, hist_y)
         true_mean.set_data([0.0, 2.0], [mean_y, mean_y])
         ekf_mean.set_data([0.0, 2.0], [mean_e, mean_e])
         info.set_text(
@@ -193,6 +208,19 @@ def linearization(seed: int = 0) -> Demo:
             f"         var  {var_e:8.3g}"
         )
 
+    return renderer, draw
+
+
+def linearization(seed: int = 0) -> Demo:
+    """Demo "linearization" (chapter 7): a Gaussian through x², sin x or a range,
+    the sampled truth against the EKF's tangent-line Gaussian.
+
+    Returns
+    -------
+    Demo (an ipywidgets.VBox)
+    """
+    model = LinearizationModel(seed=seed)
+    renderer, draw = _picture(model)
     caption = (
         "<b>Linearization.</b> Purple (bottom): the input Gaussian N(m, s²). Black: the function f; orange "
         "dashed: its tangent at m. Right, on the output axis: grey, a histogram of the true output "

@@ -2,6 +2,8 @@
 
 from __future__ import annotations
 
+from collections.abc import Callable
+
 import ipywidgets as widgets
 import numpy as np
 from matplotlib.collections import LineCollection
@@ -13,7 +15,7 @@ from ..filters.ukf import unscented_1d
 from ..plots import palette
 from ..plots.style import FigureRenderer
 from ._base import Demo, slider
-from .linearization import FUNCTIONS, LinearizationModel, function_panels, show_output_axis
+from .linearization import FUNCTIONS, LinearizationModel, function_panels, show_output_axis, sideways_histogram
 
 N_SAMPLES = 20_000  # fixed standard-normal draws, rescaled by the sliders
 X_RANGE = (-5.0, 5.0)  # the sigma points reach m +- sqrt(1 + lam) s = 2 + 2 * 1.5 at the sliders' extremes
@@ -58,16 +60,44 @@ class SigmaPointsModel(LinearizationModel):
         return m2 + s2, 4 * m2 * s2 + 2 * s2 * s2  # E[x²], Var[x²] for x ~ N(m, s²)
 
 
-def sigma_points(seed: int = 0) -> Demo:
-    """Demo "sigma points on y = x²" (chapter 9): three sigma points of the input Gaussian
-    climb the curve; their images give the UKF's Gaussian, beside the EKF's tangent guess
-    and the sampled truth.
+def _sigma_dots(ax, colour: str):
+    """Three dots, one per sigma point (placed, sized and filled by ``draw``)."""
+    return ax.scatter([0, 0, 0], [0, 0, 0], s=40, color=colour, edgecolor=colour, lw=1.5, zorder=3)
+
+
+def _output_density(line, mean: float, var: float, top: float, lo: float, hi: float, grid) -> None:
+    """Show N(mean, var) sideways on ``line``, divided by the sampled peak ``top`` and cut at DENSITY_CAP."""
+    if var > 1e-12 * (hi - lo) ** 2:
+        line.set_data(np.minimum(gaussian_pdf(grid, mean, var) / top, DENSITY_CAP), grid)
+        line.set_marker("None")
+    else:  # no spread at all: a short arrow at the mean, all the probability at one value
+        line.set_data([0.0, 0.0, ARROW, 0.0, 0.0], [lo, mean, mean, mean, hi])
+        line.set_marker(">")
+        line.set_markevery([2])
+
+
+def _readout(chi, w, moments) -> str:
+    """The text panel: the sigma points and their weights, then each answer's mean and variance."""
+    order = [2, 0, 1]  # the points are made as m, m + spread, m - spread; shown left to right
+    return (
+        f"{'sigma points':12}"
+        + "".join(f"{chi[i]:6.2f}" for i in order)
+        + f"\n{'weights':12}"
+        + "".join(f"{w[i]:6.2f}" for i in order)
+        + f"\n\n{'':12}mean{'':7}var\n"
+        + "\n".join(f"{name:7}{mean:9.3f} {var:9.4f}" for name, mean, var in moments)
+    )
+
+
+def _picture(model: SigmaPointsModel) -> tuple[FigureRenderer, Callable[[], None]]:
+    """The curve f with the sigma points climbing it from the input density, the output densities
+    (sampled, UKF, EKF) beside it, and the numbers under those.
 
     Returns
     -------
-    Demo (an ipywidgets.VBox)
+    (renderer, draw)
+        ``draw()`` shows the model's function, input, sigma points and outputs.
     """
-    model = SigmaPointsModel(seed=seed)
     fig, ax_f, ax_out, ax_in, ax_txt, y_labels = function_panels(
         8.4, 6.0, X_RANGE, Y_TICKS[model.function], width_ratio=1.4, height_ratio=1.3
     )
@@ -77,21 +107,15 @@ def sigma_points(seed: int = 0) -> Demo:
     (tangent,) = ax_f.plot(x, x, color=palette.MEASUREMENT, lw=1.6, ls="--", label="EKF: tangent at m")
     guides = LineCollection([], colors=palette.PREDICTION, lw=0.9, linestyles=":")
     ax_f.add_collection(guides)
-    on_curve = ax_f.scatter(
-        [0, 0, 0], [0, 0, 0], s=40, color=palette.PREDICTION, edgecolor=palette.PREDICTION, lw=1.5, zorder=3
-    )
+    on_curve = _sigma_dots(ax_f, palette.PREDICTION)
     ax_f.legend(loc="upper center", fontsize=9)  # the middle top: empty above all three curves
     (inp,) = ax_in.plot(x, x, color=palette.PREDICTION, lw=2)
-    on_input = ax_in.scatter(
-        [0, 0, 0], [0, 0, 0], s=40, color=palette.PREDICTION, edgecolor=palette.PREDICTION, lw=1.5, zorder=3
-    )
+    on_input = _sigma_dots(ax_in, palette.PREDICTION)
     hist = Polygon([[0, 0], [1, 1], [0, 1]], closed=True, facecolor=palette.TRUTH, alpha=0.45, lw=0, label="sampled")
     ax_out.add_patch(hist)
     (ukf,) = ax_out.plot([0, 1], [0, 1], color=palette.ESTIMATE, lw=2.2, label="UKF")
     (ekf,) = ax_out.plot([0, 1], [0, 1], color=palette.MEASUREMENT, lw=1.8, ls="--", label="EKF")
-    on_output = ax_out.scatter(
-        [0, 0, 0], [0, 0, 0], s=40, color=palette.ESTIMATE, edgecolor=palette.ESTIMATE, lw=1.5, zorder=3
-    )
+    on_output = _sigma_dots(ax_out, palette.ESTIMATE)
     # Above the panel, where no output density can reach it.
     ax_out.legend(
         loc="lower center", bbox_to_anchor=(0.5, 1.0), ncol=3, fontsize=8, frameon=False, handlelength=1.4,
@@ -102,15 +126,6 @@ def sigma_points(seed: int = 0) -> Demo:
     info = ax_txt.text(-0.12, 1.0, "", **text_style)
     moving = [curve, tangent, guides, on_curve, inp, on_input, hist, ukf, ekf, on_output, info, *y_labels]
     renderer = FigureRenderer(fig, moving)
-
-    def output_density(line, mean, var, top, lo, hi, grid):
-        if var > 1e-12 * (hi - lo) ** 2:
-            line.set_data(np.minimum(gaussian_pdf(grid, mean, var) / top, DENSITY_CAP), grid)
-            line.set_marker("None")
-        else:  # no spread at all: a short arrow at the mean, all the probability at one value
-            line.set_data([0.0, 0.0, ARROW, 0.0, 0.0], [lo, mean, mean, mean, hi])
-            line.set_marker(">")
-            line.set_markevery([2])
 
     def draw() -> None:
         f, df, _ = FUNCTIONS[model.function]
@@ -134,13 +149,9 @@ def sigma_points(seed: int = 0) -> Demo:
             dots.set_sizes(sizes)
             dots.set_facecolors([colour if wi > 0 else "white" for wi in w])  # a weight-0 point: an empty ring
         guides.set_segments([[(c, lo), (c, y), (X_RANGE[1], y)] for c, y in zip(chi, Y, strict=True)])
-        # The sampled output as a sideways histogram on fixed bins over the output axis.
         y = model.samples()
-        edges = np.linspace(lo, hi, N_BINS + 1)
-        counts, _ = np.histogram(y, bins=edges)
-        dens = counts / (y.size * (edges[1] - edges[0]))
-        top = max(float(dens.max()), 1e-12)  # the sampled peak: every output density is divided by it
-        hist.set_xy(np.column_stack([np.concatenate([[0.0], np.repeat(dens / top, 2), [0.0]]), np.repeat(edges, 2)]))
+        hist_x, hist_y, top = sideways_histogram(y, lo, hi, N_BINS)  # every output density is divided by top
+        hist.set_xy(np.column_stack([hist_x, hist_y]))
         grid = np.linspace(lo, hi, 600)
         mean_y, var_y = float(y.mean()), float(y.var())
         mean_u, var_u = model.ukf()
@@ -148,18 +159,24 @@ def sigma_points(seed: int = 0) -> Demo:
         moments = [("sampled", mean_y, var_y), ("UKF", mean_u, var_u), ("EKF", mean_e, var_e)]
         if model.exact() is not None:
             moments.append(("exact", *model.exact()))
-        output_density(ukf, mean_u, var_u, top, lo, hi, grid)
-        output_density(ekf, mean_e, var_e, top, lo, hi, grid)
-        order = [2, 0, 1]  # the points are made as m, m + spread, m - spread; shown left to right
-        info.set_text(
-            f"{'sigma points':12}"
-            + "".join(f"{chi[i]:6.2f}" for i in order)
-            + f"\n{'weights':12}"
-            + "".join(f"{w[i]:6.2f}" for i in order)
-            + f"\n\n{'':12}mean{'':7}var\n"
-            + "\n".join(f"{name:7}{mean:9.3f} {var:9.4f}" for name, mean, var in moments)
-        )
+        _output_density(ukf, mean_u, var_u, top, lo, hi, grid)
+        _output_density(ekf, mean_e, var_e, top, lo, hi, grid)
+        info.set_text(_readout(chi, w, moments))
 
+    return renderer, draw
+
+
+def sigma_points(seed: int = 0) -> Demo:
+    """Demo "sigma points on y = x²" (chapter 9): three sigma points of the input Gaussian
+    climb the curve; their images give the UKF's Gaussian, beside the EKF's tangent guess
+    and the sampled truth.
+
+    Returns
+    -------
+    Demo (an ipywidgets.VBox)
+    """
+    model = SigmaPointsModel(seed=seed)
+    renderer, draw = _picture(model)
     caption = (
         "<b>Sigma points.</b> Purple: the input N(m, s²) and its three sigma points m, m ± √(1+λ)·s "
         "(dot size: weight; a ring: weight 0), carried up the curve f (black) along dotted paths. Right: teal, the "

@@ -2,6 +2,8 @@
 
 from __future__ import annotations
 
+from collections.abc import Callable
+
 import ipywidgets as widgets
 import numpy as np
 
@@ -117,18 +119,28 @@ def _table(rows) -> str:
     return f"<table style='font-family:monospace;font-size:12px'><tr>{head}</tr>{body}</table>"
 
 
-def step_through(seed: int = 0) -> Demo:
-    """Demo "step through" (chapter 3): press Predict and Update to walk the
-    scalar Kalman filter one half-step at a time, starting from the worked
-    example's prior N(2.0, 0.40) at time step 0.  The k-th Predict moves the robot to
-    time step k; an Update uses that step's reading (the worked cycles' 3.6 and 4.7
-    at steps 1 and 2) and is refused if the step has none left.
+def _status(m: StepThroughModel) -> str:
+    """The text at the top right: what the last button did (or why an Update was refused), and R and Q."""
+    if m.note:
+        text = m.note
+    elif m.phase == "prior":
+        text = f"step 0, prior  μ = {m.mu:.3f}, σ² = {m.var:.3f}\npress Predict"
+    elif m.phase == "predicted":
+        text = rf"Predict to step {m.k}: $\bar\mu$ = {m.mu:.3f}, $\bar\sigma^2$ = {m.var:.3f} (grew by R)"
+    else:
+        text = f"Update with step {m.k}'s reading z = {m.z:.2f}: K = {m.K:.3f}\nμ = {m.mu:.3f}, σ² = {m.var:.3f}"
+    return f"{text}\nR = {m.R:.3g}, Q = {m.Q:.3g}"
+
+
+def _picture(model: StepThroughModel) -> tuple[FigureRenderer, Callable[[], None]]:
+    """The four Gaussians of a step (the belief before it, the prediction, the measurement, the
+    updated belief) on an axis that follows the belief, with the status in the corner.
 
     Returns
     -------
-    Demo (an ipywidgets.VBox)
+    (renderer, draw)
+        ``draw()`` shows the curves of the model's last step, faded in the legend where not shown.
     """
-    model = StepThroughModel(seed)
     fig, ax = new_figure(8.0, 3.4)
     ax.set_xlabel("position x (m)")
     ax.set_ylabel("density")
@@ -146,7 +158,6 @@ def step_through(seed: int = 0) -> Demo:
     curves = (before, pred, meas, post)
     dynamic = [a for c in curves for a in c if a is not None] + [zline, status, legend]
     renderer = FigureRenderer(fig, dynamic)
-    table = widgets.HTML()
 
     def draw() -> None:
         m = model
@@ -177,16 +188,29 @@ def step_through(seed: int = 0) -> Demo:
             ax.set_xlim(lo, hi)
             ax.set_ylim(0, top)
             renderer.invalidate()
-        if m.note:
-            text = m.note
-        elif m.phase == "prior":
-            text = f"step 0, prior  μ = {m.mu:.3f}, σ² = {m.var:.3f}\npress Predict"
-        elif m.phase == "predicted":
-            text = rf"Predict to step {m.k}: $\bar\mu$ = {m.mu:.3f}, $\bar\sigma^2$ = {m.var:.3f} (grew by R)"
-        else:
-            text = f"Update with step {m.k}'s reading z = {m.z:.2f}: K = {m.K:.3f}\nμ = {m.mu:.3f}, σ² = {m.var:.3f}"
-        status.set_text(f"{text}\nR = {m.R:.3g}, Q = {m.Q:.3g}")
-        table.value = _table(m.rows)
+        status.set_text(_status(m))
+
+    return renderer, draw
+
+
+def step_through(seed: int = 0) -> Demo:
+    """Demo "step through" (chapter 3): press Predict and Update to walk the
+    scalar Kalman filter one half-step at a time, starting from the worked
+    example's prior N(2.0, 0.40) at time step 0.  The k-th Predict moves the robot to
+    time step k; an Update uses that step's reading (the worked cycles' 3.6 and 4.7
+    at steps 1 and 2) and is refused if the step has none left.
+
+    Returns
+    -------
+    Demo (an ipywidgets.VBox)
+    """
+    model = StepThroughModel(seed)
+    renderer, draw_picture = _picture(model)
+    table = widgets.HTML()
+
+    def draw() -> None:
+        draw_picture()
+        table.value = _table(model.rows)
 
     caption = (
         "<b>Step through the 1-D Kalman filter.</b> Dashed teal: the belief before the step; "

@@ -2,6 +2,8 @@
 
 from __future__ import annotations
 
+from collections.abc import Callable
+
 import ipywidgets as widgets
 import numpy as np
 
@@ -84,16 +86,38 @@ class Tracker:
         return float(est), float(raw)
 
 
-def tracker(seed: int = 0) -> Demo:
-    """Demo "2-D tracker" (chapter 6): a constant-velocity filter follows a turning
-    target.  Run animates time, the step slider scrubs, and two log sliders retune
-    the filter's assumed Q and R while the target stays the same.
+def _velocity_tip(p, vel, lo, hi):
+    """Where the velocity line from ``p`` ends: ARROW_TIME ahead, cut short at the edge ``lo``, ``hi`` of the view."""
+    d = ARROW_TIME * vel
+    room = np.where(d > 0, hi - p, p - lo)  # distance to the edge the line heads for, per axis
+    with np.errstate(divide="ignore"):
+        fits = np.where(d != 0, room / np.abs(d), np.inf).min()  # fraction of the line inside the view
+    return p + float(np.clip(fits, 0.0, 1.0)) * d
+
+
+def _readout(model: Tracker) -> str:
+    """The lines under the picture: both velocities, the mean errors so far, and the gain with its regime."""
+    k, run = model.frame, model.run
+    v_est, v_true = model.velocities()
+    e_est, e_raw = model.errors()
+    return (
+        f"<div style='font-size:13px;line-height:1.5'>t = {run.t[k]:.1f} s &nbsp; velocity (m/s): "
+        f"<span style='color:{palette.ESTIMATE}'>estimated ({v_est[0]:+.2f}, {v_est[1]:+.2f})</span>, "
+        f"true ({v_true[0]:+.2f}, {v_true[1]:+.2f}) &nbsp; mean distance from the truth so far: "
+        f"estimate {e_est:.2f} m, readings {e_raw:.2f} m<br>"
+        f"<b>K = {model.gain():.3f} &nbsp; {model.regime()}</b></div>"
+    )
+
+
+def _picture(model: Tracker) -> tuple[FigureRenderer, Callable[[], None]]:
+    """The true path, the readings so far, the estimate's trail and the rest of the run, the true and
+    the estimated position with their velocities, and the estimate's 2-sigma ellipse.
 
     Returns
     -------
-    Demo (an ipywidgets.VBox)
+    (renderer, draw)
+        ``draw()`` shows the model's run and estimates up to the frame shown.
     """
-    model = Tracker(seed)
     run = model.run
     fig, ax = new_figure(8.0, 5.6)
     lo, hi = run.truth[:, :2].min(axis=0) - 3.0, run.truth[:, :2].max(axis=0) + 3.0
@@ -112,17 +136,6 @@ def tracker(seed: int = 0) -> Demo:
     (est_vel,) = ax.plot([], [], color=palette.ESTIMATE, lw=2.5, zorder=4)
     ring = covariance_ellipse(ax, run.z[0], np.eye(2), nsig=2.0, label="2σ ellipse", zorder=4)
     ax.legend(loc="lower left", bbox_to_anchor=(0.0, 1.0), ncols=5, fontsize=9)
-    readout = widgets.HTML()  # text under the picture: no glyphs to render into the PNG
-    readout.add_class("kf-readout")
-
-    def velocity_tip(p, vel):
-        """Where the velocity line from ``p`` ends: ARROW_TIME ahead, cut short at the edge of the view."""
-        d = ARROW_TIME * vel
-        room = np.where(d > 0, hi - p, p - lo)  # distance to the edge the line heads for, per axis
-        with np.errstate(divide="ignore"):
-            fits = np.where(d != 0, room / np.abs(d), np.inf).min()  # fraction of the line inside the view
-        return p + float(np.clip(fits, 0.0, 1.0)) * d
-
     renderer = FigureRenderer(fig, [pings, trail, ahead, truth_vel, truth_dot, est_vel, est_dot, ring])
 
     def draw() -> None:
@@ -135,16 +148,29 @@ def tracker(seed: int = 0) -> Demo:
         truth_dot.set_data([p_true[0]], [p_true[1]])
         truth_vel.set_data(*np.column_stack([p_true, p_true + ARROW_TIME * v_true]))
         est_dot.set_data([p_est[0]], [p_est[1]])
-        est_vel.set_data(*np.column_stack([p_est, velocity_tip(p_est, v_est)]))
+        est_vel.set_data(*np.column_stack([p_est, _velocity_tip(p_est, v_est, lo, hi)]))
         update_covariance_ellipse(ring, p_est, est.Sig[k, :2, :2])
-        e_est, e_raw = model.errors()
-        readout.value = (
-            f"<div style='font-size:13px;line-height:1.5'>t = {run.t[k]:.1f} s &nbsp; velocity (m/s): "
-            f"<span style='color:{palette.ESTIMATE}'>estimated ({v_est[0]:+.2f}, {v_est[1]:+.2f})</span>, "
-            f"true ({v_true[0]:+.2f}, {v_true[1]:+.2f}) &nbsp; mean distance from the truth so far: "
-            f"estimate {e_est:.2f} m, readings {e_raw:.2f} m<br>"
-            f"<b>K = {model.gain():.3f} &nbsp; {model.regime()}</b></div>"
-        )
+
+    return renderer, draw
+
+
+def tracker(seed: int = 0) -> Demo:
+    """Demo "2-D tracker" (chapter 6): a constant-velocity filter follows a turning
+    target.  Run animates time, the step slider scrubs, and two log sliders retune
+    the filter's assumed Q and R while the target stays the same.
+
+    Returns
+    -------
+    Demo (an ipywidgets.VBox)
+    """
+    model = Tracker(seed)
+    renderer, draw_picture = _picture(model)
+    readout = widgets.HTML()  # text under the picture: no glyphs to render into the PNG
+    readout.add_class("kf-readout")
+
+    def draw() -> None:
+        draw_picture()
+        readout.value = _readout(model)
 
     caption = (
         "<b>2-D tracker.</b> Grey: the target's true path, its position now and its true velocity (the line "
@@ -163,7 +189,7 @@ def tracker(seed: int = 0) -> Demo:
         model=model,
         renderer=renderer,
         draw=draw,
-        frames=run.t.size,
+        frames=model.run.t.size,
         controls={
             "Q": (
                 slider(widgets.FloatLogSlider, "assumed Q (m²)", Q_TUNED, -3, 4, 0.1, ".3g", base=10),

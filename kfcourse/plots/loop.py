@@ -8,10 +8,9 @@ teal beams from the estimate to the landmarks the filter used at that step, and
 dashed orange beams to those whose readings it rejected (outside its gate).
 
 Under the map, two strips show the position error along x and along y over the
-whole run, each with the band of plus or minus two standard deviations of that
-coordinate, read from the filter's own covariance.  An honest filter keeps its
-error inside the band about 95 % of the time: the x error is Gaussian with
-variance :math:`\Sigma_{xx}` if the filter is right about itself.
+whole run, each with its band of plus or minus two standard deviations, read from
+the filter's own covariance: they are drawn by :mod:`kfcourse.plots.loop_strips`,
+whose functions this module offers too.
 
 Every function takes a run record with the fields of
 :class:`kfcourse.sim.LoopRun` (``t, dt, start, truth, landmarks, used,
@@ -24,10 +23,10 @@ from __future__ import annotations
 from dataclasses import dataclass
 
 import numpy as np
-from matplotlib.collections import LineCollection, PolyCollection
+from matplotlib.collections import LineCollection
 from matplotlib.colors import to_rgba
 from matplotlib.lines import Line2D
-from matplotlib.patches import Ellipse, Polygon, Rectangle
+from matplotlib.patches import Ellipse, Polygon
 from matplotlib.text import Text
 
 from . import palette
@@ -40,58 +39,41 @@ from .artists import (
     update_covariance_ellipse,
     update_robot,
 )
-from .style import moving_tick_labels, new_figure, tick_text
+from .loop_strips import (
+    NSIG,
+    ErrorStrips,
+    error_strips,
+    kidnap_step,
+    position_errors,
+    run_step,
+    strip_limit,
+    update_error_strips,
+)
+from .style import new_figure
+
+__all__ = [
+    "ErrorStrips",
+    "LoopMap",
+    "error_strips",
+    "loop_chart",
+    "loop_figure",
+    "loop_map",
+    "position_errors",
+    "strip_limit",
+    "update_error_strips",
+    "update_loop_map",
+]
 
 MAP_MARGIN = 1.5  # m of room around the landmarks and the true path
 ROBOT_SIZE = 0.45  # m from the robot's centre to its nose
 TRUTH_SIZE = 0.65  # m: the true robot is drawn larger, so it shows round an estimate on top of it
 ROBOT_FILL = 0.3  # opacity of the estimated robot's fill: a small ellipse on top of it stays visible
-NSIG = 2.0  # the map's ellipses and the strips' bands are 2-sigma
-AXES = ("x", "y")
-
-
-def _step(run, k) -> int:
-    """``k`` as a step of ``run``; ``None`` means the last step."""
-    T = len(run.t)
-    k = T - 1 if k is None else int(k)
-    if not 0 <= k < T:
-        raise ValueError(f"k must be a step of the run, 0 to {T - 1}, got {k}")
-    return k
-
-
-def _kidnap_step(run) -> int | None:
-    """The step at which the truth jumps, or ``None``."""
-    return None if run.kidnap is None else int(run.kidnap)
-
-
-def position_errors(run) -> tuple[np.ndarray, np.ndarray]:
-    r"""The position error per axis and its 2-sigma bound, at every step.
-
-    The error is truth minus estimate, :math:`e_k = p_k - \hat p_k` (x and y
-    separately), and the bound is :math:`2\sqrt{\Sigma_{xx}}` for x and
-    :math:`2\sqrt{\Sigma_{yy}}` for y, with Σ the filter's covariance after
-    the step's readings.  If the filter is honest, each error is Gaussian with
-    that variance and stays within its bound at about 95 % of the steps.
-    Introduced in chapter 10.
-
-    Parameters
-    ----------
-    run : LoopRun
-
-    Returns
-    -------
-    (error, bound) : ndarray, shape (T, 2) each
-        Columns x and y (m).
-    """
-    error = np.asarray(run.truth)[:, :2] - np.asarray(run.mu)[:, :2]  # e = p - p_hat
-    bound = NSIG * np.sqrt(np.diagonal(np.asarray(run.Sig), axis1=1, axis2=2)[:, :2])  # 2 sqrt(Sig_xx), 2 sqrt(Sig_yy)
-    return error, bound
 
 
 def _truth_pieces(run) -> tuple[np.ndarray, np.ndarray]:
     """The true path before and after a kidnap (the second is empty without one)."""
     truth = np.asarray(run.truth)[:, :2]
-    k0 = _kidnap_step(run)
+    k0 = kidnap_step(run)
     if k0 is None:
         return truth, np.empty((0, 2))
     return truth[:k0], truth[k0:]
@@ -155,7 +137,7 @@ def loop_map(ax, run, k: int | None = None, legend: bool = True) -> LoopMap:
     -------
     LoopMap
     """
-    k = _step(run, k)
+    k = run_step(run, k)
     marks = np.asarray(run.landmarks, float).reshape(-1, 2)
     points = np.vstack([marks, np.asarray(run.truth)[:, :2]])
     lo, hi = points.min(axis=0) - MAP_MARGIN, points.max(axis=0) + MAP_MARGIN
@@ -211,7 +193,7 @@ def loop_map(ax, run, k: int | None = None, legend: bool = True) -> LoopMap:
 
 def update_loop_map(view: LoopMap, run, k: int) -> None:
     """Show step ``k`` of ``run`` (the same run or another one) on a map made by :func:`loop_map`."""
-    k = _step(run, k)
+    k = run_step(run, k)
     before, after = _truth_pieces(run)
     view.truth_before.set_data(before[:, 0], before[:, 1])
     view.truth_after.set_data(after[:, 0], after[:, 1])
@@ -224,143 +206,13 @@ def update_loop_map(view: LoopMap, run, k: int) -> None:
     marks = np.asarray(run.landmarks)
     update_beams(view.beams, mu[k], marks[np.asarray(run.used[k], bool)])
     update_beams(view.rejected, mu[k], marks[np.asarray(run.rejected[k], bool)])
-    k0 = _kidnap_step(run)
+    k0 = kidnap_step(run)
     if _blind(run, k):
         view.note.set_text("sensor blind")
     elif k0 is not None and k >= k0:
         view.note.set_text("kidnapped: the truth jumped, the filter was not told")
     else:
         view.note.set_text("")
-
-
-# --------------------------------------------------------------------------- the error strips
-
-
-STRIP_TICKS = (-1.0, 0.0, 1.0)  # the strips' y ticks, as fractions of their limit
-TICK_WIDTH = 6  # characters a strip's tick label may take, as in "\u22120.005"
-
-
-def strip_limit(run) -> float:
-    """The strips' y limit (m): the first of 1, 2, 5, 10, 20, ... times a power of ten (0.01, 0.02, 0.05,
-    0.1, ...) at or above 1.15 times the largest error or bound of ``run``.
-
-    Such a limit changes rarely as the run changes, so the tick labels keep their
-    values while a student drags a slider a little, and it reads as a round number.
-    Introduced in chapter 10.
-    """
-    return _limit(*position_errors(run))
-
-
-def _limit(error, bound) -> float:
-    """:func:`strip_limit` of the errors and bounds :func:`position_errors` gave."""
-    value = 1.15 * max(float(np.abs(error).max()), float(bound.max()), 1e-12)
-    decade = 10.0 ** np.floor(np.log10(value))
-    return next(float(step * decade) for step in (1.0, 2.0, 5.0, 10.0) if step * decade >= value)
-
-
-@dataclass(frozen=True)
-class ErrorStrips:
-    """What :func:`error_strips` drew, one entry per axis (x, then y).
-
-    The strips plot in units of their limit, :func:`strip_limit`: their axes
-    always run from -1 to 1, so their ticks and grid never move, and the tick
-    labels are moving text that says what -1, 0 and 1 stand for in metres.  A
-    new run changes that text, never the axes.
-    """
-
-    axes: tuple
-    past: tuple[Line2D, ...]  #: the error up to the step shown
-    future: tuple[Line2D, ...]  #: the rest of the run, faint
-    bands: tuple[PolyCollection, ...]  #: plus or minus 2 sigma
-    cursors: tuple[Line2D, ...]  #: the step shown
-    blind: tuple[Rectangle, ...]  #: the steps without readings (hidden without dropout)
-    kidnap: tuple[Line2D, ...]  #: the kidnap step (hidden without one)
-    labels: tuple[tuple[Text, ...], ...]  #: the y tick labels of each axis, at STRIP_TICKS
-
-    @property
-    def moving(self) -> list:
-        """Every artist that changes with the step or the run, bottom to top."""
-        per_axis = zip(self.blind, self.bands, self.kidnap, self.future, self.past, self.cursors, strict=True)
-        return [artist for group in per_axis for artist in group] + [text for axis in self.labels for text in axis]
-
-
-def _band_verts(t, bound) -> np.ndarray:
-    """The outline of the band -bound..+bound over t, as one closed polygon."""
-    return np.concatenate([np.column_stack([t, bound]), np.column_stack([t[::-1], -bound[::-1]])])
-
-
-def error_strips(axes, run, k: int | None = None) -> ErrorStrips:
-    """Draw the x and y position errors of ``run`` with their 2-sigma bands.
-
-    See :func:`position_errors` for the definitions and :func:`strip_limit`
-    for the shared y limit.  Introduced in chapter 10.
-
-    Parameters
-    ----------
-    axes : pair of matplotlib Axes
-        For the x error and the y error (sharing their time axis).
-    run : LoopRun
-    k : int, optional
-        The step marked by the cursor; by default the last.
-
-    Returns
-    -------
-    ErrorStrips
-    """
-    k = _step(run, k)
-    t = np.asarray(run.t, float)
-    parts: dict[str, list] = {name: [] for name in ("past", "future", "bands", "cursors", "blind", "kidnap", "labels")}
-    for ax, name in zip(axes, AXES, strict=True):
-        ax.set_xlim(t[0], t[-1])
-        ax.set_ylim(-1.0, 1.0)  # in units of the strips' limit
-        ax.axhline(0.0, color=palette.INK, lw=0.8, alpha=0.5)
-        ax.set_ylabel(f"{name} error (m)")
-        labels = moving_tick_labels(ax, STRIP_TICKS, TICK_WIDTH)
-        blind = Rectangle((t[0], -1e3), 0.0, 2e3, color=palette.TRUTH, alpha=0.25, lw=0, visible=False)
-        ax.add_patch(blind)
-        band = PolyCollection([], facecolors=palette.ESTIMATE, alpha=0.18, lw=0)
-        ax.add_collection(band, autolim=False)
-        (kidnap,) = ax.plot([t[0], t[0]], [-1e3, 1e3], color=palette.INK, lw=1.2, ls=":", visible=False)
-        (future,) = ax.plot([], [], color=palette.ESTIMATE, lw=1.2, alpha=0.35)
-        (past,) = ax.plot([], [], color=palette.ESTIMATE, lw=1.8)
-        (cursor,) = ax.plot([t[0], t[0]], [-1e3, 1e3], color=palette.INK, lw=1.0, alpha=0.6)
-        for key, artist in zip(parts, (past, future, band, cursor, blind, kidnap, labels), strict=True):
-            parts[key].append(artist)
-    axes[-1].set_xlabel("time (s)")
-    strips = ErrorStrips(tuple(axes), **{key: tuple(value) for key, value in parts.items()})
-    update_error_strips(strips, run, k)
-    return strips
-
-
-def update_error_strips(strips: ErrorStrips, run, k: int) -> None:
-    """Show ``run`` with the cursor at step ``k`` on strips made by :func:`error_strips`.
-
-    Only artists in :attr:`ErrorStrips.moving` change: a renderer that keeps the
-    static background need not redraw it, whatever the run.
-    """
-    k = _step(run, k)
-    t = np.asarray(run.t, float)
-    error, bound = position_errors(run)
-    top = _limit(error, bound)
-    error, bound = error / top, bound / top  # in units of the limit
-    k0 = _kidnap_step(run)
-    for i in range(len(strips.axes)):
-        strips.past[i].set_data(t[: k + 1], error[: k + 1, i])
-        strips.future[i].set_data(t[k:], error[k:, i])
-        strips.bands[i].set_verts([_band_verts(t, bound[:, i])])
-        strips.cursors[i].set_xdata([t[k], t[k]])
-        for label, y in zip(strips.labels[i], STRIP_TICKS, strict=True):
-            label.set_text(tick_text(y * top))
-        blind = strips.blind[i]
-        blind.set_visible(run.dropout is not None)
-        if run.dropout is not None:
-            t0, t1 = run.dropout
-            first, last = t[min(t0, len(t) - 1)], t[min(max(t1 - 1, t0), len(t) - 1)]
-            blind.set_x(first - 0.5 * run.dt)
-            blind.set_width(last - first + run.dt)
-        strips.kidnap[i].set_visible(k0 is not None)
-        if k0 is not None:
-            strips.kidnap[i].set_xdata([t[k0], t[k0]])
 
 
 # --------------------------------------------------------------------------- the whole picture
@@ -405,7 +257,7 @@ def loop_chart(run, k: int | None = None):
     -------
     matplotlib.figure.Figure
     """
-    k = _step(run, k)
+    k = run_step(run, k)
     fig, ax_map, strip_axes = loop_figure(run)
     loop_map(ax_map, run, k)
     error_strips(strip_axes, run, k)

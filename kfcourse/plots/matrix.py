@@ -20,6 +20,23 @@ from .style import new_figure
 __all__ = ["predict_update_chart"]
 
 
+def _fit_view(ax, beliefs, k: float, band) -> None:
+    """Limits: the bounding boxes of the ``k``-sigma ellipses of ``beliefs``, pairs ``(mu, Sig)``
+    (half-extent k sqrt(Sig_ii)), and the reading's ``band`` ``(low, high)`` if not None, with a margin;
+    one scale on both axes unless their spans differ fourfold or more."""
+    lows = [m - k * np.sqrt(np.diag(S)) for m, S in beliefs]
+    highs = [m + k * np.sqrt(np.diag(S)) for m, S in beliefs]
+    low, high = np.min(lows, axis=0), np.max(highs, axis=0)
+    if band is not None:
+        low[0], high[0] = min(low[0], band[0]), max(high[0], band[1])
+    pad = 0.15 * np.maximum(high - low, 1e-3) + 1e-3  # a margin, and room even for a collapsed belief
+    ax.set_xlim(low[0] - pad[0], high[0] + pad[0])
+    ax.set_ylim(low[1] - pad[1], high[1] + pad[1])
+    span = (high - low) + 2 * pad
+    if 0.25 < span[0] / span[1] < 4.0:
+        ax.set_aspect("equal", adjustable="box")  # one scale on both axes, so the drawn tilt is the true one
+
+
 def predict_update_chart(
     mu_bar,
     Sig_bar,
@@ -70,9 +87,11 @@ def predict_update_chart(
         Q = v.variance(Q, "Q")
 
     fig, ax = new_figure(5.4, 4.4)
-    half_width = k * math.sqrt(Q) if z is not None else 0.0
+    band = None  # the reading's band z +- k sqrt(Q), if there is a reading
     if z is not None:
-        ax.axvspan(z - half_width, z + half_width, color=palette.MEASUREMENT, alpha=0.15, lw=0)
+        half_width = k * math.sqrt(Q)
+        band = (z - half_width, z + half_width)
+        ax.axvspan(*band, color=palette.MEASUREMENT, alpha=0.15, lw=0)
         ax.axvline(z, color=palette.MEASUREMENT, ls=":", lw=1.8, label=rf"reading $z \pm {k:g}\sigma_Q$")
     covariance_ellipse(
         ax,
@@ -89,19 +108,7 @@ def predict_update_chart(
     ax.plot(*mu_bar, "o", color=palette.PREDICTION, ms=6, zorder=4)
     ax.plot(*mu, "o", color=palette.ESTIMATE, ms=6, zorder=4)
 
-    # Limits: the bounding boxes of both ellipses (half-extent k sqrt(Sig_ii)) and the band.
-    reach = [(mu_bar, Sig_bar), (mu, Sig)]
-    lows = [m - k * np.sqrt(np.diag(S)) for m, S in reach]
-    highs = [m + k * np.sqrt(np.diag(S)) for m, S in reach]
-    low, high = np.min(lows, axis=0), np.max(highs, axis=0)
-    if z is not None:
-        low[0], high[0] = min(low[0], z - half_width), max(high[0], z + half_width)
-    pad = 0.15 * np.maximum(high - low, 1e-3) + 1e-3  # a margin, and room even for a collapsed belief
-    ax.set_xlim(low[0] - pad[0], high[0] + pad[0])
-    ax.set_ylim(low[1] - pad[1], high[1] + pad[1])
-    span = (high - low) + 2 * pad
-    if 0.25 < span[0] / span[1] < 4.0:
-        ax.set_aspect("equal", adjustable="box")  # one scale on both axes, so the drawn tilt is the true one
+    _fit_view(ax, [(mu_bar, Sig_bar), (mu, Sig)], k, band)
     ax.set_xlabel(labels[0])
     ax.set_ylabel(labels[1])
     fig.legend(loc="outside lower center", ncols=3, fontsize=8, frameon=False)  # under the axes, inside the figure
