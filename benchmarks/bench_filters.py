@@ -111,8 +111,8 @@ def kfcourse_ukf() -> Callable:
     def run(zs):
         mu, Sig, out = UNI_MU0, UNI_SIG0, []
         for z in zs:
-            mu, Sig = kfcourse_ukf_predict(mu, Sig, UKF_LAM, vectorized=True)
-            mu, Sig = kfcourse_ukf_update(mu, Sig, z, UKF_LAM, vectorized=True)
+            mu, Sig = kfcourse_ukf_predict(mu, Sig, UKF_LAM)
+            mu, Sig = kfcourse_ukf_update(mu, Sig, z, UKF_LAM)
             out.append((mu, Sig))
         return out
 

@@ -91,13 +91,11 @@ def kfcourse_ekf_update(mu, Sig, z):
     return kf.ekf_update(mu, Sig, z, h, H_jac, UNI_Q, residual=range_bearing_residual)
 
 
-def kfcourse_ukf_predict(mu, Sig, lam, vectorized):
-    return kf.ukf_predict(
-        mu, Sig, CONTROL, g, UNI_R, lam, residual=pose_residual, mean=pose_mean, vectorized=vectorized
-    )
+def kfcourse_ukf_predict(mu, Sig, lam):
+    return kf.ukf_predict(mu, Sig, CONTROL, g, UNI_R, lam, residual=pose_residual, mean=pose_mean)
 
 
-def kfcourse_ukf_update(mu, Sig, z, lam, vectorized):
+def kfcourse_ukf_update(mu, Sig, z, lam):
     return kf.ukf_update(
         mu,
         Sig,
@@ -107,8 +105,7 @@ def kfcourse_ukf_update(mu, Sig, z, lam, vectorized):
         lam,
         residual=range_bearing_residual,
         mean=range_bearing_mean,
-        x_residual=pose_residual,
-        vectorized=vectorized,  # the models take all sigma points at once; filterpy calls them per point
+        x_residual=pose_residual,  # the models take all sigma points at once; filterpy calls them per point
     )
 
 

@@ -43,8 +43,6 @@ def wrap_angle(a):
     -------
     float or ndarray, same shape
     """
-    if isinstance(a, float | int | np.floating | np.integer) and math.isfinite(a):
-        return _wrap_number(float(a))  # one number: the same formula with the math module, far cheaper
     a = v.finite(a, "a")
     # a - 2 pi k with k chosen for (-pi, pi]; angles already in range are returned unchanged.
     # np.mod keeps huge angles in range (a - 2 pi ceil(...) did not beyond ~1e16), and it
@@ -52,33 +50,6 @@ def wrap_angle(a):
     out = np.where((a > -np.pi) & (a <= np.pi), a, np.pi - np.mod(np.pi - a, 2.0 * np.pi))
     out = np.where(out <= -np.pi, np.pi, out)
     return float(out) if out.ndim == 0 else out
-
-
-def _wrap_number(a: float) -> float:
-    """:func:`wrap_angle` of one finite float; Python's ``%`` is ``np.mod`` for floats, bit for bit."""
-    if -math.pi < a <= math.pi:
-        return a  # already in range: unchanged
-    a = math.pi - (math.pi - a) % (2.0 * math.pi)  # a - 2 pi k, in [-pi, pi]
-    return math.pi if a <= -math.pi else a  # the mod rounded up to 2 pi: that end maps to pi
-
-
-def _sinc(h: float) -> float:
-    """sin(h) / h, and 1 at h = 0: how much shorter than its arc of turn 2h a chord is.
-
-    The number ``np.sinc(h / np.pi)`` gives, to the last bit (numpy forms the same
-    argument, pi (h / pi)), without the array set-up that costs numpy ten times the sine.
-    """
-    y = np.pi * (h / np.pi)
-    return np.sin(y) / y if y else 1.0
-
-
-def _wrap(a):
-    """:func:`wrap_angle` of a checked number or float array; an array already in range comes back itself."""
-    if np.ndim(a) == 0:
-        return _wrap_number(float(a))
-    if ((a > -np.pi) & (a <= np.pi)).all():
-        return a  # the common case: nothing to wrap
-    return wrap_angle(a)
 
 
 def numeric_jacobian(f: Callable, x, eps: float = 1e-6, residual: Callable | None = None) -> np.ndarray:
@@ -146,29 +117,20 @@ def constant_velocity(dt: float, dim: int = 1) -> tuple[np.ndarray, np.ndarray]:
     return F, H
 
 
-# Each model below checks its inputs and calls its core, the function of the same name with a leading
-# underscore.  A core takes arrays that are already checked (a pose (3,) or a stack (N, 3) of float, a
-# control (2,), dt > 0, a landmark (2,) away from the pose) and checks nothing, so that a run engine that
-# checked its inputs once can call it on every step.
-
-
 def _rows(x, name: str, n: int) -> np.ndarray:
-    """A vector (n,) or a stack of them (N, n), one a row."""
+    """A checked vector (n,) or stack of them (N, n), one a row."""
     a = v.finite(x, name)
     if a.shape[-1:] != (n,) or a.ndim > 2:
         raise ValueError(f"{name} must have shape ({n},) or (N, {n}), got {a.shape}")
     return a
 
 
-def _pose_control(state, u, dt):
-    return _rows(state, "state", 3), v.vector(u, "u", 2), v.positive(dt, "dt", "a time step", "s")
-
-
-def _one_pose(s: np.ndarray) -> np.ndarray:
-    """A checked state that must be one pose (3,), not a stack: a Jacobian is taken at one point."""
-    if s.ndim != 1:
+def _pose_control(state, u, dt, one_pose: bool = False):
+    """Checked pose (3,) (or, unless ``one_pose``, a stack (N, 3)), control (2,) and time step."""
+    s = _rows(state, "state", 3)
+    if one_pose and s.ndim != 1:  # a Jacobian is taken at one point
         raise ValueError(f"state must have shape (3,), got {s.shape}")
-    return s
+    return s, v.vector(u, "u", 2), v.positive(dt, "dt", "a time step", "s")
 
 
 def unicycle(state, u, dt) -> np.ndarray:
@@ -188,8 +150,8 @@ def unicycle(state, u, dt) -> np.ndarray:
     Parameters
     ----------
     state : array_like, shape (3,) or (N, 3)
-        Pose ``[x, y, theta]``, or N poses one a row (as the UKF's
-        ``vectorized`` mode passes its sigma points).
+        Pose ``[x, y, theta]``, or N poses one a row (as the UKF passes its
+        sigma points).
     u : array_like, shape (2,)
         Control ``[V, omega]``.
     dt : float
@@ -200,19 +162,14 @@ def unicycle(state, u, dt) -> np.ndarray:
     ndarray, shape (3,) or (N, 3)
         Next pose, heading wrapped to (-pi, pi].
     """
-    return _unicycle(*_pose_control(state, u, dt))
-
-
-def _unicycle(s, u, dt):
-    """:func:`unicycle` of a checked pose (3,) or stack (N, 3), control (2,) and time step."""
+    s, (V, w), dt = _pose_control(state, u, dt)
     x, y, th = s[..., 0], s[..., 1], s[..., 2]
-    V, w = u
     half = 0.5 * w * dt
-    d = V * dt * _sinc(half)  # chord length: V dt sin(half)/half
-    out = np.empty(s.shape)  # C order whatever the input's: the last bits of sums over its rows depend on it
+    d = V * dt * np.sinc(half / np.pi)  # chord length: V dt sin(half) / half (np.sinc(t) = sin(pi t) / (pi t))
+    out = np.empty(s.shape)
     out[..., 0] = x + d * np.cos(th + half)  # x' = x + d cos(theta + omega dt/2)
     out[..., 1] = y + d * np.sin(th + half)  # y' = y + d sin(theta + omega dt/2)
-    out[..., 2] = _wrap(th + w * dt)  # theta' = theta + omega dt, wrapped
+    out[..., 2] = wrap_angle(th + w * dt)  # theta' = theta + omega dt, wrapped
     return out
 
 
@@ -237,15 +194,9 @@ def unicycle_jacobian(state, u, dt) -> np.ndarray:
     -------
     ndarray, shape (3, 3)
     """
-    s, u, dt = _pose_control(state, u, dt)
-    return _unicycle_jacobian(_one_pose(s), u, dt)
-
-
-def _unicycle_jacobian(s, u, dt):
-    """:func:`unicycle_jacobian` of a checked pose (3,), control (2,) and time step."""
-    V, w = u
+    s, (V, w), dt = _pose_control(state, u, dt, one_pose=True)
     half = 0.5 * w * dt
-    d = V * dt * _sinc(half)  # chord length
+    d = V * dt * np.sinc(half / np.pi)  # chord length
     phi = s[2] + half  # heading of the chord
     return np.array([[1.0, 0.0, -d * math.sin(phi)], [0.0, 1.0, d * math.cos(phi)], [0.0, 0.0, 1.0]])
 
@@ -273,17 +224,11 @@ def unicycle_control_jacobian(state, u, dt) -> np.ndarray:
     -------
     ndarray, shape (3, 2)
     """
-    s, u, dt = _pose_control(state, u, dt)
-    return _unicycle_control_jacobian(_one_pose(s), u, dt)
-
-
-def _unicycle_control_jacobian(s_, u, dt):
-    """:func:`unicycle_control_jacobian` of a checked pose (3,), control (2,) and time step."""
-    V, w = u
+    pose, (V, w), dt = _pose_control(state, u, dt, one_pose=True)
     h = 0.5 * w * dt
-    s = float(_sinc(h))  # sin(h) / h
+    s = float(np.sinc(h / np.pi))  # sin(h) / h
     ds = (math.cos(h) - s) / h if abs(h) > 1e-3 else -h / 3  # ds/dh; the series near 0 avoids 0/0
-    d, phi = V * dt * s, s_[2] + h
+    d, phi = V * dt * s, pose[2] + h
     c, n = math.cos(phi), math.sin(phi)
     return np.array(
         [
@@ -300,9 +245,11 @@ def _offset(s, m):
     return dx, dy, dx * dx + dy * dy  # q = dx^2 + dy^2
 
 
-def _pose_landmark(state, landmark):
+def _pose_landmark(state, landmark, one_pose: bool = False):
     """Checked pose(s) and landmark, the landmark away from every pose."""
     s = _rows(state, "state", 3)
+    if one_pose and s.ndim != 1:  # a Jacobian is taken at one point
+        raise ValueError(f"state must have shape (3,), got {s.shape}")
     m = v.vector(landmark, "landmark", 2)
     if np.any(_offset(s, m)[2] == 0.0):
         raise ValueError("landmark must not sit exactly at the robot's position (bearing undefined)")
@@ -329,15 +276,11 @@ def range_bearing(state, landmark) -> np.ndarray:
     ndarray, shape (2,) or (N, 2)
         ``[r, phi]``, bearing wrapped to (-pi, pi].
     """
-    return _range_bearing(*_pose_landmark(state, landmark))
-
-
-def _range_bearing(s, m):
-    """:func:`range_bearing` of a checked pose (3,) or stack (N, 3) and landmark (2,)."""
+    s, m = _pose_landmark(state, landmark)
     dx, dy, q = _offset(s, m)
     out = np.empty((*s.shape[:-1], 2))
     out[..., 0] = np.sqrt(q)  # r = sqrt(q)
-    out[..., 1] = _wrap(np.arctan2(dy, dx) - s[..., 2])  # phi = atan2(dy, dx) - theta, wrapped
+    out[..., 1] = wrap_angle(np.arctan2(dy, dx) - s[..., 2])  # phi = atan2(dy, dx) - theta, wrapped
     return out
 
 
@@ -355,12 +298,7 @@ def range_bearing_jacobian(state, landmark) -> np.ndarray:
     -------
     ndarray, shape (2, 3)
     """
-    s, m = _pose_landmark(state, landmark)
-    return _range_bearing_jacobian(_one_pose(s), m)
-
-
-def _range_bearing_jacobian(s, m):
-    """:func:`range_bearing_jacobian` of a checked pose (3,) and landmark (2,)."""
+    s, m = _pose_landmark(state, landmark, one_pose=True)
     dx, dy, q = _offset(s, m)
     r = math.sqrt(q)
     return np.array([[-dx / r, -dy / r, 0.0], [dy / q, -dx / q, -1.0]])
@@ -369,7 +307,7 @@ def _range_bearing_jacobian(s, m):
 def _angle_residual(a, b, index: int) -> np.ndarray:
     """Rows of ``a`` minus ``b`` (either may be a stack) for checked arrays, the angle at ``index`` wrapped."""
     d = a - b
-    d[..., index] = _wrap(d[..., index])
+    d[..., index] = wrap_angle(d[..., index])
     return d
 
 
@@ -383,12 +321,7 @@ def pose_residual(a, b) -> np.ndarray:
     -------
     ndarray, shape (3,)
     """
-    return _pose_residual(_rows(a, "pose_residual a", 3), _rows(b, "pose_residual b", 3))
-
-
-def _pose_residual(a, b):
-    """:func:`pose_residual` of checked poses (3,) or stacks (N, 3)."""
-    return _angle_residual(a, b, 2)
+    return _angle_residual(_rows(a, "pose_residual a", 3), _rows(b, "pose_residual b", 3), 2)
 
 
 def range_bearing_residual(a, b) -> np.ndarray:
@@ -401,12 +334,7 @@ def range_bearing_residual(a, b) -> np.ndarray:
     -------
     ndarray, shape (2,)
     """
-    return _range_bearing_residual(_rows(a, "range_bearing_residual a", 2), _rows(b, "range_bearing_residual b", 2))
-
-
-def _range_bearing_residual(a, b):
-    """:func:`range_bearing_residual` of checked readings (2,) or stacks (N, 2)."""
-    return _angle_residual(a, b, 1)
+    return _angle_residual(_rows(a, "range_bearing_residual a", 2), _rows(b, "range_bearing_residual b", 2), 1)
 
 
 def _points_weights(points, weights) -> tuple[np.ndarray, np.ndarray]:
@@ -431,12 +359,7 @@ def pose_mean(points, weights) -> np.ndarray:
     -------
     ndarray, shape (3,)
     """
-    return _pose_mean(*_points_weights(points, weights))
-
-
-def _pose_mean(pts, w):
-    """:func:`pose_mean` of checked poses (N, 3) and weights (N,)."""
-    return _mean_with_angle(pts, w, 2)
+    return _mean_with_angle(*_points_weights(points, weights), 2)
 
 
 def range_bearing_mean(points, weights) -> np.ndarray:
@@ -448,9 +371,4 @@ def range_bearing_mean(points, weights) -> np.ndarray:
     -------
     ndarray, shape (2,)
     """
-    return _range_bearing_mean(*_points_weights(points, weights))
-
-
-def _range_bearing_mean(pts, w):
-    """:func:`range_bearing_mean` of checked readings (N, 2) and weights (N,)."""
-    return _mean_with_angle(pts, w, 1)
+    return _mean_with_angle(*_points_weights(points, weights), 1)

@@ -357,7 +357,7 @@ def test_the_valid_baselines_do_not_raise():
     kf.unscented_transform(MU2, I2, lin, 1.0)
     kf.unscented_1d(2.0, 1.0, lin)
     kf.ukf_predict(MU2, I2, None, g_ok, 0.01 * I2, 1.0)
-    kf.ukf_update(MU2, I2, [1.2], lambda x: x[:1], Q11, 1.0)
+    kf.ukf_update(MU2, I2, [1.2], lambda chi: chi[:, :1], Q11, 1.0)
     kf.mahalanobis([1.0, 0.0], I2)
     idx, _ = kf.associate(**ASSOC_OK)
     assert idx == 0

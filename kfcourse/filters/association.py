@@ -10,7 +10,6 @@ from collections.abc import Callable
 import numpy as np
 
 from .. import _validate as v
-from .linalg import innovation_covariance
 
 
 def mahalanobis(nu, S) -> float:
@@ -34,11 +33,6 @@ def mahalanobis(nu, S) -> float:
     """
     nu = v.vector(nu, "nu")
     S = v.covariance(S, "S", nu.size)
-    return _mahalanobis(nu, S)
-
-
-def _mahalanobis(nu, S) -> float:
-    """:func:`mahalanobis` of a checked innovation (k,) and its covariance (k, k)."""
     try:
         m2 = float(nu @ np.linalg.solve(S, nu))  # nu^T S^-1 nu
     except np.linalg.LinAlgError:
@@ -99,7 +93,7 @@ def associate(
         z_hat = v.output(h(mu_bar, m), "h", z.size)
         Hj = v.output_matrix(H(mu_bar, m), "H", z.size, mu_bar.size)
         nu = z - z_hat if residual is None else v.output(residual(z, z_hat), "residual", z.size)
-        S = innovation_covariance(Sig_bar, Hj, Q)  # S_j = H_j Sig_bar H_j^T + Q
+        S = Hj @ Sig_bar @ Hj.T + Q  # S_j = H_j Sig_bar H_j^T + Q
         dist[j] = mahalanobis(nu, S)  # d_j = sqrt(nu^T S^-1 nu)
     best = int(np.argmin(dist))
     return (best if dist[best] <= gate else None), dist

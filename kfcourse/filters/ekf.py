@@ -1,12 +1,8 @@
 """The extended Kalman filter.
 
 Introduced in chapter 7: means go through the nonlinear models ``g`` and ``h``,
-covariances through their Jacobians ``G`` and ``H``.
-
-The public steps check their inputs and the models' results, then call the
-private cores below them, which take checked arrays and models trusted to
-return finite arrays of the right shape (a run engine that checked its inputs
-once calls the cores on every step).
+covariances through their Jacobians ``G`` and ``H``.  Each step checks its inputs
+and the models' results, then writes the chapter's equations, one a line.
 """
 
 from __future__ import annotations
@@ -16,7 +12,6 @@ from collections.abc import Callable
 import numpy as np
 
 from .. import _validate as v
-from .linalg import gain, innovation_covariance, joseph_correct, symmetric
 
 
 def ekf_predict(mu, Sig, u, g: Callable, G: Callable, R) -> tuple[np.ndarray, np.ndarray]:
@@ -48,22 +43,10 @@ def ekf_predict(mu, Sig, u, g: Callable, G: Callable, R) -> tuple[np.ndarray, np
     n = mu.size
     Sig, R = v.covariance(Sig, "Sig", n), v.covariance(R, "R", n)
     g, G = v.function(g, "g"), v.function(G, "G")
-    return _ekf_predict(
-        mu,
-        Sig,
-        u,
-        lambda x, c: v.output(g(x, c), "g", n),  # the models' results checked
-        lambda x, c: v.output_matrix(G(x, c), "G", n, n),
-        R,
-    )
-
-
-def _ekf_predict(mu, Sig, u, g, G, R):
-    """:func:`ekf_predict` for checked arrays and models that return an (n,) vector and an (n, n) matrix."""
-    mu_bar = g(mu, u)  # mu_bar = g(mu, u): the mean rides the real curve
-    Gt = G(mu, u)  # G at the previous mean
-    Sig_bar = Gt @ Sig @ Gt.T + R  # Sig_bar = G Sig G^T + R: the covariance rides the tangent
-    return mu_bar, symmetric(Sig_bar)
+    mu_bar = v.output(g(mu, u), "g", n)  # mu_bar = g(mu, u): the mean rides the real curve
+    G_t = v.output_matrix(G(mu, u), "G", n, n)  # G at the previous mean
+    Sig_bar = G_t @ Sig @ G_t.T + R  # Sig_bar = G Sig G^T + R: the covariance rides the tangent
+    return mu_bar, (Sig_bar + Sig_bar.T) / 2
 
 
 def ekf_update(
@@ -101,29 +84,15 @@ def ekf_update(
     n, k = mu_bar.size, z.size
     h, H = v.function(h, "h"), v.function(H, "H")
     residual = v.optional_function(residual, "residual")
-    y, Ht, S = _ekf_innovation(
-        mu_bar,
-        Sig_bar,
-        z,
-        lambda x: v.output(h(x), "h", k),  # the models' results checked
-        lambda x: v.output_matrix(H(x), "H", k, n),
-        Q,
-        None if residual is None else lambda a, b: v.output(residual(a, b), "residual", k),
-    )
-    return _ekf_correct(mu_bar, Sig_bar, y, Ht, S, Q)
-
-
-def _ekf_innovation(mu_bar, Sig_bar, z, h, H, Q, residual):
-    """The first half of :func:`ekf_update` for checked arrays and trusted models: the innovation ``y``, the
-    Jacobian ``H`` at ``mu_bar`` and the innovation covariance ``S``, all a validation gate needs."""
-    z_hat = h(mu_bar)  # predicted measurement h(mu_bar)
-    Ht = H(mu_bar)  # H at the predicted mean
-    y = z - z_hat if residual is None else residual(z, z_hat)  # innovation
-    S = innovation_covariance(Sig_bar, Ht, Q)  # S = H Sig_bar H^T + Q
-    return y, Ht, S
-
-
-def _ekf_correct(mu_bar, Sig_bar, y, Ht, S, Q):
-    """The second half of :func:`ekf_update`: gain and correction, from :func:`_ekf_innovation`'s results."""
-    K = gain(Sig_bar @ Ht.T, S)  # K = Sig_bar H^T S^-1
-    return joseph_correct(mu_bar, Sig_bar, y, Ht, Q, K)
+    z_hat = v.output(h(mu_bar), "h", k)  # predicted reading h(mu_bar)
+    H_t = v.output_matrix(H(mu_bar), "H", k, n)  # H at the predicted mean
+    y = z - z_hat if residual is None else v.output(residual(z, z_hat), "residual", k)  # innovation
+    S = H_t @ Sig_bar @ H_t.T + Q  # S = H Sig_bar H^T + Q
+    try:
+        K = Sig_bar @ H_t.T @ np.linalg.inv(S)  # K = Sig_bar H^T S^-1
+    except np.linalg.LinAlgError:
+        raise ValueError("Q: the innovation covariance S = H Sig_bar H^T + Q is singular") from None
+    mu = mu_bar + K @ y  # mu = mu_bar + K (z - h(mu_bar))
+    I_KH = np.eye(n) - K @ H_t
+    Sig = I_KH @ Sig_bar @ I_KH.T + K @ Q @ K.T  # Joseph form of (I - K H) Sig_bar
+    return mu, (Sig + Sig.T) / 2

@@ -3,11 +3,10 @@
 Introduced in chapter 9: "it is easier to approximate a distribution than a
 function".  Sigma points use the lower Cholesky factor of ``(n + lam) Sig``.
 
-The public functions check their inputs and the models' results, then call the
-private cores, which take checked arrays and models (and hooks) that take every
-sigma point at once, one a row, and are trusted to return finite arrays of the
-right shape (a run engine that checked its inputs once calls the cores on every
-step).
+The models and hooks take every sigma point at once, one a row of a ``(2n+1, n)``
+array, and return one row per point (the models in :mod:`kfcourse.models` take such
+stacks).  Each step checks its inputs and the models' results, then writes the
+chapter's equations, one a line.
 """
 
 from __future__ import annotations
@@ -17,7 +16,6 @@ from collections.abc import Callable
 import numpy as np
 
 from .. import _validate as v
-from .linalg import gain, symmetric
 
 
 def _sqrt_psd(A: np.ndarray) -> np.ndarray:
@@ -59,12 +57,7 @@ def sigma_points(mu, Sig, lam: float, beta: float = 0.0) -> tuple[np.ndarray, np
     """
     mu = v.vector(mu, "mu")
     Sig = v.covariance(Sig, "Sig", mu.size)
-    lam = v.scalar(lam, "lam")
-    beta = v.scalar(beta, "beta")
-    return _sigma_points(mu, Sig, lam, beta)
-
-
-def _sigma_points(mu, Sig, lam, beta=0.0):
+    lam, beta = v.scalar(lam, "lam"), v.scalar(beta, "beta")
     n = mu.size
     if n + lam <= 0:
         raise ValueError(f"lam must be > -n = {-n} so that n + lam > 0, got {lam}")
@@ -77,40 +70,17 @@ def _sigma_points(mu, Sig, lam, beta=0.0):
     return chi, wm, wc
 
 
-def _push(f, chi, name, k=None, vectorized=False):
-    """f at every sigma point: one call per point, or one call on all rows at once."""
-    if vectorized:
-        return v.matrix(f(chi), f"the result of {name}", chi.shape[0], k)
-    Y = [v.vector(f(x), f"the result of {name}", k) for x in chi]
-    if k is None and len({y.size for y in Y}) != 1:
-        raise ValueError(f"{name} must return vectors of one length")
-    return np.array(Y)  # rows checked to be equal-length vectors: cheaper than vstack
+def _on_points(result, name: str, rows: int, cols: int | None = None) -> np.ndarray:
+    """The result of a model or hook called on every sigma point: one finite row per point."""
+    return v.matrix(result, f"the result of {name}", rows, cols)
 
 
-def _on_points(f, name, k, vectorized):
-    """The model as the cores take it: on every sigma point (a row of chi) at once, its result checked."""
-    return lambda chi: _push(f, chi, name, k, vectorized)
-
-
-def _differences(points, centre, residual, vectorized):
-    """Rows of ``points`` minus ``centre`` through the residual hook, its result checked."""
-    if vectorized:
-        return v.matrix(residual(points, centre), "the result of residual", *points.shape)
-    return np.array([residual(p, centre) for p in points], dtype=float)
-
-
-def _on_rows(residual, vectorized):
-    """The residual hook as the cores take it: on a stack of rows against one centre, its result checked
-    (one call per row unless ``vectorized``); no hook stays None."""
-    return None if residual is None else lambda points, centre: _differences(points, centre, residual, vectorized)
-
-
-def _recombine(Y, wm, wc, residual, mean):
-    """Weighted mean and covariance of transformed points (rows of Y); ``residual`` takes the stack."""
-    y_mean = wm @ Y if mean is None else np.asarray(mean(Y, wm), dtype=float)  # sum w_i Y_i
-    dY = Y - y_mean if residual is None else residual(Y, y_mean)  # Y_i - y
+def _weighted_moments(Y, wm, wc, residual, mean):
+    """Weighted mean and covariance of the transformed points (rows of Y), and the deviations from the mean."""
+    y_mean = wm @ Y if mean is None else v.vector(mean(Y, wm), "the result of mean", Y.shape[1])  # sum w_i Y_i
+    dY = Y - y_mean if residual is None else _on_points(residual(Y, y_mean), "residual", *Y.shape)  # Y_i - y
     cov = (wc[:, None] * dY).T @ dY  # sum w_i (Y_i - y)(Y_i - y)^T
-    return y_mean, symmetric(cov), dY
+    return y_mean, (cov + cov.T) / 2, dY
 
 
 def unscented_transform(
@@ -120,7 +90,6 @@ def unscented_transform(
     lam: float,
     residual: Callable | None = None,
     mean: Callable | None = None,
-    vectorized: bool = False,
     *,
     beta: float = 0.0,
 ) -> tuple[np.ndarray, np.ndarray]:
@@ -135,18 +104,14 @@ def unscented_transform(
     ----------
     mu : array_like, shape (n,)
     Sig : array_like, shape (n, n)
-    f : callable ``f(x) -> array (k,)``
-        Applied to each sigma point (a row of shape (n,)).
+    f : callable ``f(chi) -> array (2n+1, k)``
+        Applied to every sigma point at once, one a row of ``chi``.
     lam : float
         Spread parameter, ``n + lam > 0``.
-    residual : callable ``residual(a, b) -> a - b``, optional
-        Difference of outputs (wrap angles here).
+    residual : callable ``residual(points, b) -> points - b``, optional
+        Difference of outputs, one a row (wrap angles here).
     mean : callable ``mean(points, weights) -> array (k,)``, optional
         Weighted mean of outputs (average angles on the circle here).
-    vectorized : bool
-        Call the model (and ``residual``) once with every sigma point as a row of
-        a ``(2n+1, n)`` array instead of once per point; the models in
-        :mod:`kfcourse.models` accept such stacks.  Same result, much faster.
     beta : float
         Added to the centre covariance weight, ``wc_0 = w_0 + beta`` (0 by
         default, the plain transform of the lesson).  The scaled unscented
@@ -160,8 +125,9 @@ def unscented_transform(
     f = v.function(f, "f")
     residual, mean = v.optional_function(residual, "residual"), v.optional_function(mean, "mean")
     chi, wm, wc = sigma_points(mu, Sig, lam, beta)
-    y_mean, cov, _ = _recombine(_push(f, chi, "f", None, vectorized), wm, wc, _on_rows(residual, vectorized), mean)
-    return y_mean, cov
+    Y = _on_points(f(chi), "f", len(chi))  # Y_i = f(chi_i)
+    y_mean, Sig_y, _ = _weighted_moments(Y, wm, wc, residual, mean)  # sum w_i Y_i, sum w_i (Y_i - y)(Y_i - y)^T
+    return y_mean, Sig_y
 
 
 def unscented_1d(mu: float, var: float, f: Callable, lam: float = 0.0) -> tuple[float, float]:
@@ -188,7 +154,7 @@ def unscented_1d(mu: float, var: float, f: Callable, lam: float = 0.0) -> tuple[
     var = v.variance(var, "var")
     f = v.function(f, "f")
     lam = v.scalar(lam, "lam")
-    chi, wm, wc = _sigma_points(np.array([mu]), np.array([[var]]), lam)
+    chi, wm, wc = sigma_points([mu], [[var]], lam)
     Y = np.array([v.scalar(f(float(x[0])), "the result of f") for x in chi])
     mu_y = float(wm @ Y)  # sum w_i f(chi_i)
     var_y = float(wc @ (Y - mu_y) ** 2)  # sum w_i (f(chi_i) - mu_y)^2
@@ -204,7 +170,6 @@ def ukf_predict(
     lam: float,
     residual: Callable | None = None,
     mean: Callable | None = None,
-    vectorized: bool = False,
     *,
     beta: float = 0.0,
 ) -> tuple[np.ndarray, np.ndarray]:
@@ -221,7 +186,8 @@ def ukf_predict(
     Sig : array_like, shape (n, n)
     u : array_like
         Control, passed to ``g`` unchanged.
-    g : callable ``g(x, u) -> array (n,)``
+    g : callable ``g(chi, u) -> array (2n+1, n)``
+        Motion model, applied to every sigma point at once, one a row of ``chi``.
     R : array_like, shape (n, n)
         Process-noise covariance.
     lam : float
@@ -229,10 +195,6 @@ def ukf_predict(
     residual, mean : callable, optional
         State difference and weighted state mean (for a heading, use
         :func:`kfcourse.models.pose_residual` and :func:`kfcourse.models.pose_mean`).
-    vectorized : bool
-        Call the model and the residual hooks once with every sigma point as a
-        row of a ``(2n+1, n)`` array instead of once per point (the models in
-        :mod:`kfcourse.models` accept such stacks).  Same result, much faster.
     beta : float
         Added to the centre covariance weight, ``wc_0 = w_0 + beta`` (0 by
         default, the plain transform of the lesson).  The scaled unscented
@@ -249,17 +211,10 @@ def ukf_predict(
     g = v.function(g, "g")
     residual, mean = v.optional_function(residual, "residual"), v.optional_function(mean, "mean")
     lam, beta = v.scalar(lam, "lam"), v.scalar(beta, "beta")
-    g_rows = _on_points(lambda x: g(x, u), "g", n, vectorized)
-    return _ukf_predict(mu, Sig, g_rows, R, lam, beta, _on_rows(residual, vectorized), mean)
-
-
-def _ukf_predict(mu, Sig, g, R, lam, beta, residual, mean):
-    """:func:`ukf_predict` for checked arrays; ``g(chi)`` moves every sigma point (a row of chi) with the
-    control bound in, and ``residual`` takes the stack."""
-    chi, wm, wc = _sigma_points(mu, Sig, lam, beta)
-    Y = g(chi)  # Y_i = g(chi_i, u)
-    mu_bar, Sig_bar, _ = _recombine(Y, wm, wc, residual, mean)  # sum w_i Y_i, sum w_i (Y_i - mu_bar)(...)^T
-    return mu_bar, Sig_bar + R  # Sig_bar = sum w_i (Y_i - mu_bar)(Y_i - mu_bar)^T + R
+    chi, wm, wc = sigma_points(mu, Sig, lam, beta)
+    Y = _on_points(g(chi, u), "g", len(chi), n)  # Y_i = g(chi_i, u)
+    mu_bar, Sig_Y, _ = _weighted_moments(Y, wm, wc, residual, mean)  # mu_bar = sum w_i Y_i
+    return mu_bar, Sig_Y + R  # Sig_bar = sum w_i (Y_i - mu_bar)(Y_i - mu_bar)^T + R
 
 
 def ukf_update(
@@ -272,7 +227,6 @@ def ukf_update(
     residual: Callable | None = None,
     mean: Callable | None = None,
     x_residual: Callable | None = None,
-    vectorized: bool = False,
     *,
     beta: float = 0.0,
 ) -> tuple[np.ndarray, np.ndarray]:
@@ -291,7 +245,8 @@ def ukf_update(
     mu_bar : array_like, shape (n,)
     Sig_bar : array_like, shape (n, n)
     z : array_like, shape (k,)
-    h : callable ``h(x) -> array (k,)``
+    h : callable ``h(chi) -> array (2n+1, k)``
+        Measurement model, applied to every sigma point at once, one a row of ``chi``.
     Q : array_like, shape (k, k)
         Measurement-noise covariance.
     lam : float
@@ -302,10 +257,6 @@ def ukf_update(
         :func:`kfcourse.models.range_bearing_mean`).
     x_residual : callable, optional
         State difference, for the cross-covariance.
-    vectorized : bool
-        Call the model and the residual hooks once with every sigma point as a
-        row of a ``(2n+1, n)`` array instead of once per point (the models in
-        :mod:`kfcourse.models` accept such stacks).  Same result, much faster.
     beta : float
         Added to the centre covariance weight, ``wc_0 = w_0 + beta`` (0 by
         default, the plain transform of the lesson).  The scaled unscented
@@ -322,28 +273,17 @@ def ukf_update(
     residual, mean = v.optional_function(residual, "residual"), v.optional_function(mean, "mean")
     x_residual = v.optional_function(x_residual, "x_residual")
     lam, beta = v.scalar(lam, "lam"), v.scalar(beta, "beta")
-    h_rows = _on_points(h, "h", k, vectorized)
-    z_residual, x_rows = _on_rows(residual, vectorized), _on_rows(x_residual, vectorized)
-    z_hat, S, Sig_xz = _ukf_moments(mu_bar, Sig_bar, h_rows, Q, lam, beta, z_residual, mean, x_rows)
-    K = gain(Sig_xz, S)  # K = Sig_xz S^-1
-    y = z - z_hat if residual is None else np.asarray(residual(z, z_hat), dtype=float)  # innovation
-    return _ukf_correct(mu_bar, Sig_bar, y, S, K)
-
-
-def _ukf_moments(mu_bar, Sig_bar, h, Q, lam, beta, residual, mean, x_residual):
-    """The sigma-point half of :func:`ukf_update` for checked arrays: the predicted measurement ``z_hat``, its
-    covariance ``S`` and the cross-covariance ``Sig_xz``; ``h`` and both residual hooks take stacks of rows."""
-    chi, wm, wc = _sigma_points(mu_bar, Sig_bar, lam, beta)
-    Z = h(chi)  # Z_i = h(chi_i)
-    z_hat, S, dZ = _recombine(Z, wm, wc, residual, mean)  # z_hat = sum w_i Z_i
-    S = S + Q  # S = sum w_i (Z_i - z_hat)(Z_i - z_hat)^T + Q
-    dX = chi - mu_bar if x_residual is None else x_residual(chi, mu_bar)  # chi_i - mu_bar
+    chi, wm, wc = sigma_points(mu_bar, Sig_bar, lam, beta)
+    Z = _on_points(h(chi), "h", len(chi), k)  # Z_i = h(chi_i)
+    z_hat, S_Z, dZ = _weighted_moments(Z, wm, wc, residual, mean)  # predicted reading z_hat = sum w_i Z_i
+    S = S_Z + Q  # S = sum w_i (Z_i - z_hat)(Z_i - z_hat)^T + Q
+    dX = chi - mu_bar if x_residual is None else _on_points(x_residual(chi, mu_bar), "x_residual", *chi.shape)
     Sig_xz = (wc[:, None] * dX).T @ dZ  # Sig_xz = sum w_i (chi_i - mu_bar)(Z_i - z_hat)^T
-    return z_hat, S, Sig_xz
-
-
-def _ukf_correct(mu_bar, Sig_bar, y, S, K):
-    """The correction of :func:`ukf_update` with the innovation ``y``, its covariance ``S`` and the gain ``K``."""
-    mu = mu_bar + K @ y  # mu = mu_bar + K y
+    try:
+        K = Sig_xz @ np.linalg.inv(S)  # K = Sig_xz S^-1
+    except np.linalg.LinAlgError:
+        raise ValueError("Q: the innovation covariance S is singular, so the gain S^-1 is undefined") from None
+    y = z - z_hat if residual is None else v.vector(residual(z, z_hat), "the result of residual", k)  # innovation
+    mu = mu_bar + K @ y  # mu = mu_bar + K (z - z_hat)
     Sig = Sig_bar - K @ S @ K.T  # Sig = Sig_bar - K S K^T
-    return mu, symmetric(Sig)
+    return mu, (Sig + Sig.T) / 2

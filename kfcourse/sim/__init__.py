@@ -15,7 +15,16 @@ from .hallway import (
     start_cell,
 )
 from .line import LineRun, simulate_line
-from .localization import LoopRun, landmark_loop, process_noise_of_odometry
+from .localization import (
+    LoopRun,
+    Track,
+    gate_within,
+    landmark_loop,
+    localize,
+    loop_filter,
+    loop_world,
+    process_noise_of_odometry,
+)
 from .robot import DEFAULT_LANDMARKS, RobotRun, loop_controls, readings, simulate_robot
 from .target import (
     TargetEstimates,
@@ -43,6 +52,7 @@ __all__ = [
     "RobotRun",
     "TargetEstimates",
     "TargetRun",
+    "Track",
     "TrackBatch",
     "association_scan",
     "bias_drift",
@@ -51,10 +61,14 @@ __all__ = [
     "filter_target",
     "filter_tracks",
     "flipped_bearing_jacobian",
+    "gate_within",
     "gated_update",
     "hallway_doors",
     "landmark_loop",
+    "localize",
     "loop_controls",
+    "loop_filter",
+    "loop_world",
     "monte_carlo_drift",
     "motion_kernel",
     "move",

@@ -17,7 +17,6 @@ import numpy as np
 from .. import _validate as v
 from ..filters.association import associate
 from ..filters.ekf import ekf_update
-from ..filters.linalg import innovation_covariance
 from ..models import range_bearing, range_bearing_jacobian, range_bearing_residual, wrap_angle
 from .records import read_only
 
@@ -110,7 +109,7 @@ def association_scan(seed: int = 0, leg: bool = False) -> AssociationScan:
         z=read_only(z),
         source=read_only(source, dtype=int),
         z_hat=read_only([range_bearing(SCAN_MU_BAR, m) for m in SCAN_LANDMARKS]),  # z_hat_j = h(mu_bar, m_j)
-        S=read_only([innovation_covariance(SCAN_SIG_BAR, Hj, Q) for Hj in Hs]),  # S_j = H_j Sig_bar H_j^T + Q
+        S=read_only([Hj @ SCAN_SIG_BAR @ Hj.T + Q for Hj in Hs]),  # S_j = H_j Sig_bar H_j^T + Q
         leg=read_only(SCAN_LEG) if leg else None,
         seed=seed,
     )

@@ -15,7 +15,8 @@ import numpy as np
 from .. import _validate as v
 from ..filters.ekf import ekf_predict, ekf_update
 from ..models import range_bearing, range_bearing_jacobian, range_bearing_residual, unicycle, unicycle_jacobian
-from .records import read_only
+from .localization import localize
+from .records import Record, read_only
 from .robot import simulate_robot
 
 # Two landmarks inside the default loop (x from -4 to 4 m, y from 0 to 5 m).
@@ -23,7 +24,7 @@ TWO_LANDMARKS = read_only([[-2.0, 2.5], [2.0, 2.5]])
 
 
 @dataclass(frozen=True)
-class EkfRun:
+class EkfRun(Record):
     """One EKF over a simulated drive; every array has one row per time step ``k = 0 .. T-1``."""
 
     t: np.ndarray  #: (T,) time of each pose (s)
@@ -87,40 +88,30 @@ def run_ekf(flipped: bool = False, seed: int = 0, landmarks=None) -> EkfRun:
     """
     flipped = v.flag(flipped, "flipped")
     seed = v.whole(seed, "seed", 0)
-    run = simulate_robot(landmarks=TWO_LANDMARKS if landmarks is None else landmarks, sensor_range=6.0, seed=seed)
+    world = simulate_robot(landmarks=TWO_LANDMARKS if landmarks is None else landmarks, sensor_range=6.0, seed=seed)
     H_of = flipped_bearing_jacobian if flipped else range_bearing_jacobian
-    dt = run.dt
+    dt = world.dt
     R = np.diag([0.05, 0.05, 0.01]) ** 2  # process noise per step (x, y, theta)
-    Q = np.diag([run.range_std, run.bearing_std]) ** 2  # measurement noise (r, phi)
-    mu, Sig = run.start.copy(), np.diag([0.01, 0.01, 0.001])
-    T = run.t.size
-    mus, Sigs = np.empty((T, 3)), np.empty((T, 3, 3))
-    for k in range(T):
-        mu, Sig = ekf_predict(
-            mu, Sig, run.odometry[k], lambda x, u: unicycle(x, u, dt), lambda x, u: unicycle_jacobian(x, u, dt), R
-        )
-        for j in np.flatnonzero(run.visible[k]):
-            m = run.landmarks[j]
-            mu, Sig = ekf_update(
-                mu,
-                Sig,
-                run.z[k, j],
-                lambda x, m=m: range_bearing(x, m),
-                lambda x, m=m: H_of(x, m),
-                Q,
-                residual=range_bearing_residual,
-            )
-        mus[k], Sigs[k] = mu, Sig
-    e = run.truth[:, :2] - mus[:, :2]
-    d2 = np.einsum("ti,tij,tj->t", e, np.linalg.inv(Sigs[:, :2, :2]), e)  # e^T Sig_xy^-1 e
+    Q = np.diag([world.range_std, world.bearing_std]) ** 2  # measurement noise (r, phi)
+
+    def predict(mu, Sig, u):
+        return ekf_predict(mu, Sig, u, lambda x, c: unicycle(x, c, dt), lambda x, c: unicycle_jacobian(x, c, dt), R)
+
+    def update(mu_bar, Sig_bar, z, m):
+        h, H = lambda x: range_bearing(x, m), lambda x: H_of(x, m)
+        return ekf_update(mu_bar, Sig_bar, z, h, H, Q, residual=range_bearing_residual)
+
+    track = localize(world, predict, update, np.diag([0.01, 0.01, 0.001]))
+    e = world.truth[:, :2] - track.mu[:, :2]
+    d2 = np.einsum("ti,tij,tj->t", e, np.linalg.inv(track.Sig[:, :2, :2]), e)  # e^T Sig_xy^-1 e
     return EkfRun(
-        t=run.t,
-        truth=run.truth,
-        landmarks=run.landmarks,
-        mu=read_only(mus),
-        Sig=read_only(Sigs),
-        error=read_only(np.linalg.norm(e, axis=1)),
-        inside=read_only(d2 <= 9.0, dtype=bool),
+        t=world.t,
+        truth=world.truth,
+        landmarks=world.landmarks,
+        mu=track.mu,
+        Sig=track.Sig,
+        error=np.linalg.norm(e, axis=1),
+        inside=d2 <= 9.0,
         flipped=flipped,
         seed=seed,
     )

@@ -1,38 +1,38 @@
 """The landmark localization loop: a robot drives round a map and an EKF or a UKF follows it (chapters 8-10).
 
-The robot executes the loop's controls exactly; the filter is told them through
-noisy odometry and corrects itself with labelled range-bearing readings of the
-landmarks within sensor range, one landmark at a time.  Everything the course's
-last chapters push on is an argument here: the filter, a sensor dropout, the two
-noise levels, a kidnapping, and forgetting to wrap the bearing innovation.
+:func:`simulate_robot` makes the world: the robot executes the loop's controls exactly
+(and may be kidnapped), the filter is told them through noisy odometry, and the sensor
+reads the landmarks within range (unless it is blind).  :func:`localize` is the loop of
+chapter 8, over the public filter steps: predict with the odometry, then for each reading
+in view, gate it and update with it.  :func:`landmark_loop` puts the two together for
+every setting the course's last chapters push on.
 """
 
 from __future__ import annotations
 
+from collections.abc import Callable
 from dataclasses import dataclass
 
 import numpy as np
 
 from .. import _validate as v
-from ..filters.association import _mahalanobis
-from ..filters.ekf import _ekf_correct, _ekf_innovation, _ekf_predict
-from ..filters.linalg import gain
-from ..filters.ukf import _ukf_correct, _ukf_moments, _ukf_predict
+from ..filters.association import mahalanobis
+from ..filters.ekf import ekf_predict, ekf_update
+from ..filters.ukf import ukf_predict, ukf_update
 from ..models import (
-    _pose_mean,
-    _pose_residual,
-    _range_bearing,
-    _range_bearing_jacobian,
-    _range_bearing_mean,
-    _range_bearing_residual,
-    _unicycle,
-    _unicycle_control_jacobian,
-    _unicycle_jacobian,
+    pose_mean,
+    pose_residual,
+    range_bearing,
+    range_bearing_jacobian,
+    range_bearing_mean,
+    range_bearing_residual,
+    unicycle,
     unicycle_control_jacobian,
+    unicycle_jacobian,
     wrap_angle,
 )
-from .records import read_only
-from .robot import DEFAULT_LANDMARKS, loop_controls, readings
+from .records import Record, read_only
+from .robot import DEFAULT_LANDMARKS, RobotRun, loop_controls, simulate_robot
 
 FILTERS = ("ekf", "ukf")
 V_STD, OMEGA_STD = 0.1, 0.05  # odometry noise at motion_noise = 1: m/s, rad/s
@@ -43,7 +43,18 @@ UKF_LAM = 0.0  # lambda = 3 - n for the pose (n = 3): centre weight 0, six point
 
 
 @dataclass(frozen=True)
-class LoopRun:
+class Track(Record):
+    """What a filter made of a drive (:func:`localize`); one row per step ``k = 0 .. T-1``."""
+
+    mu_bar: np.ndarray  #: (T, n) predicted mean, before the updates of step k
+    Sig_bar: np.ndarray  #: (T, n, n) predicted covariance
+    mu: np.ndarray  #: (T, n) estimate after the updates of step k
+    Sig: np.ndarray  #: (T, n, n) its covariance
+    used: np.ndarray  #: (T, L) bool: the readings the filter used (in view and inside the gate)
+
+
+@dataclass(frozen=True)
+class LoopRun(Record):
     """One drive round the loop and the filter that followed it; arrays have one row per step ``k = 0 .. T-1``.
 
     Step ``k``: the filter predicts with ``odometry[k]`` (giving ``mu_bar[k]``,
@@ -90,17 +101,6 @@ def _noise_scale(x, name: str) -> float:
     return value
 
 
-def _dropout(dropout) -> tuple[int, int] | None:
-    if dropout is None:
-        return None
-    if np.ndim(dropout) != 1 or len(dropout) != 2:
-        raise ValueError(f"dropout must be None or a pair of steps (t0, t1), got {dropout!r}")
-    t0, t1 = v.whole(dropout[0], "dropout[0]"), v.whole(dropout[1], "dropout[1]")
-    if t1 < t0:
-        raise ValueError(f"dropout must have t0 <= t1, got {dropout!r}")
-    return t0, t1
-
-
 def process_noise_of_odometry(mu, u, dt: float, M) -> np.ndarray:
     r"""Process noise R of one step when the noise is in the odometry: the control noise mapped into the pose.
 
@@ -129,22 +129,105 @@ def process_noise_of_odometry(mu, u, dt: float, M) -> np.ndarray:
     return W @ M @ W.T  # R = W M W^T
 
 
-def _check_filter_held(filter, motion_noise, sensor_noise, mu_bar, Sig_bar, mu, Sig) -> None:
-    """After the lap: every number finite and every covariance positive semi-definite, else a ValueError.
+def localize(world: RobotRun, predict: Callable, update: Callable, Sig0, accept: Callable | None = None) -> Track:
+    """The localization loop of chapter 8: at each step predict with the odometry, then for each
+    landmark in view, gate its reading and update with it, one landmark at a time.
 
-    The run checks its arguments once and then calls the filters' unchecked cores, so a filter that broke
-    down at extreme noise scales is caught here (the public filter steps refuse such a covariance).
+    Parameters
+    ----------
+    world : RobotRun
+        The drive (:func:`~kfcourse.sim.simulate_robot`): odometry, readings and the map.
+    predict : callable ``predict(mu, Sig, odometry) -> (mu_bar, Sig_bar)``
+    update : callable ``update(mu_bar, Sig_bar, z, landmark) -> (mu, Sig)``
+    Sig0 : array_like, shape (n, n)
+        The filter's covariance at the start; its mean is ``world.start``.
+    accept : callable ``accept(mu_bar, Sig_bar, z, landmark) -> bool``, optional
+        The validation gate: a reading it refuses is not used.  By default every reading is.
+
+    Returns
+    -------
+    Track
     """
-    broke = f"the {filter.upper()} broke down with motion_noise={motion_noise} and sensor_noise={sensor_noise}"
-    for name, a in (("mu_bar", mu_bar), ("Sig_bar", Sig_bar), ("mu", mu), ("Sig", Sig)):
-        finite = np.isfinite(a).reshape(len(a), -1).all(axis=1)  # one bool per step
-        if not finite.all():
-            raise ValueError(f"{broke}: {name} is not finite (no NaN or inf) from step {np.argmin(finite)}")
-    for name, a in (("Sig_bar", Sig_bar), ("Sig", Sig)):
-        try:
-            v.covariance_stack(a, name, *a.shape[:2])
-        except ValueError as err:
-            raise ValueError(f"{broke}: {err}") from None
+    T, L = world.visible.shape
+    mu, Sig = np.array(world.start), np.array(Sig0, dtype=float)
+    mu_bar, Sig_bar = np.empty((T, *mu.shape)), np.empty((T, *Sig.shape))
+    mus, Sigs, used = np.empty_like(mu_bar), np.empty_like(Sig_bar), np.zeros((T, L), dtype=bool)
+    for k in range(T):
+        mu, Sig = predict(mu, Sig, world.odometry[k])
+        mu_bar[k], Sig_bar[k] = mu, Sig
+        for j in np.flatnonzero(world.visible[k]):  # sequential updates, one landmark at a time
+            z, m = world.z[k, j], world.landmarks[j]
+            if accept is None or accept(mu, Sig, z, m):
+                mu, Sig = update(mu, Sig, z, m)
+                used[k, j] = True
+        mus[k], Sigs[k] = mu, Sig
+    return Track(mu_bar=mu_bar, Sig_bar=Sig_bar, mu=mus, Sig=Sigs, used=used)
+
+
+def loop_filter(filter: str, dt: float, M, Q, wrap_bearing: bool = True) -> tuple[Callable, Callable]:
+    """The ``predict`` and ``update`` of the course's EKF or UKF on the unicycle and the range-bearing sensor.
+
+    Both call the public filter steps.  The process noise is the odometry noise ``M``
+    mapped into the pose (:func:`process_noise_of_odometry`); the update wraps the
+    bearing innovation (unless ``wrap_bearing`` is False, chapter 8's bug) and the
+    heading of the result.  The UKF uses λ = 0 and averages headings on the circle.
+    Introduced in chapter 8 (EKF) and chapter 9 (UKF).
+    """
+    z_residual = range_bearing_residual if wrap_bearing else None
+    z_mean = range_bearing_mean if wrap_bearing else None
+
+    def predict(mu, Sig, u):
+        R = process_noise_of_odometry(mu, u, dt, M)
+        if filter == "ekf":
+            return ekf_predict(mu, Sig, u, lambda x, c: unicycle(x, c, dt), lambda x, c: unicycle_jacobian(x, c, dt), R)
+        return ukf_predict(mu, Sig, u, lambda X, c: unicycle(X, c, dt), R, UKF_LAM, pose_residual, pose_mean)
+
+    def update(mu_bar, Sig_bar, z, m):
+        h = lambda x: range_bearing(x, m)  # noqa: E731
+        if filter == "ekf":
+            H = lambda x: range_bearing_jacobian(x, m)  # noqa: E731
+            mu, Sig = ekf_update(mu_bar, Sig_bar, z, h, H, Q, z_residual)
+        else:
+            mu, Sig = ukf_update(mu_bar, Sig_bar, z, h, Q, UKF_LAM, z_residual, z_mean, pose_residual)
+        mu[2] = wrap_angle(mu[2])  # the update may push the heading past pi
+        return mu, Sig
+
+    return predict, update
+
+
+def gate_within(gate: float, Q, wrap_bearing: bool = True) -> Callable:
+    """A validation gate (chapter 8): accept a reading whose Mahalanobis distance from the landmark's
+    predicted reading, with the linearized ``S = H Sig_bar H^T + Q``, is at most ``gate``."""
+
+    def accept(mu_bar, Sig_bar, z, m) -> bool:
+        z_hat, H = range_bearing(mu_bar, m), range_bearing_jacobian(mu_bar, m)
+        y = range_bearing_residual(z, z_hat) if wrap_bearing else z - z_hat  # innovation
+        return mahalanobis(y, H @ Sig_bar @ H.T + Q) <= gate
+
+    return accept
+
+
+def loop_world(
+    seed: int = 0, motion_noise: float = 1.0, sensor_noise: float = 1.0, landmarks=None, **drive
+) -> RobotRun:
+    """The capstone's world: the default robot drives :func:`loop_controls` through the map, its noise scaled.
+
+    ``motion_noise`` scales the odometry noise (0.1 m/s, 0.05 rad/s at 1), ``sensor_noise`` the
+    reading noise (0.1 m, 0.03 rad at 1); ``drive`` passes ``sensor_range``, ``laps``,
+    ``kidnap`` and ``dropout`` to :func:`~kfcourse.sim.simulate_robot`.  Introduced in chapter 10.
+    """
+    dt = 0.2  # s
+    return simulate_robot(
+        loop_controls(dt=dt),
+        dt,
+        landmarks=DEFAULT_LANDMARKS if landmarks is None else landmarks,
+        v_std=motion_noise * V_STD,
+        omega_std=motion_noise * OMEGA_STD,
+        range_std=sensor_noise * RANGE_STD,
+        bearing_std=sensor_noise * BEARING_STD,
+        seed=seed,
+        **drive,
+    )
 
 
 def landmark_loop(
@@ -163,18 +246,10 @@ def landmark_loop(
 ) -> LoopRun:
     r"""Drive the loop of :func:`loop_controls` through a map and localize with an EKF or a UKF.
 
-    Truth: the robot executes the loop's controls :math:`u_k` exactly.  Odometry:
-    :math:`\tilde u_k = u_k + (\sigma_V e_{k,0}, \sigma_\omega e_{k,1})`.  Readings:
-    :math:`z_{k,j} = h(x_k, m_j) + (\sigma_r\epsilon_{k,j,0}, \sigma_\phi\epsilon_{k,j,1})`
-    for every landmark within ``sensor_range`` (the draws of
-    :func:`~kfcourse.sim.simulate_robot`, which this matches step for step).
-
-    Filter: it starts at the true start with covariance :data:`SIG0`, predicts
-    with the unicycle model and the process noise
-    :math:`R_k = W M W^\top` (:func:`process_noise_of_odometry`,
-    :math:`M = \mathrm{diag}(\sigma_V^2, \sigma_\omega^2)`), and updates with every
-    used reading in turn, :math:`Q = \mathrm{diag}(\sigma_r^2, \sigma_\phi^2)`.  Its
-    R and Q are the simulation's own: the filter is honest about the noise.
+    The world is :func:`~kfcourse.sim.simulate_robot`'s, draw for draw.  The filter
+    (:func:`loop_filter`, run by :func:`localize`) starts at the true start with
+    covariance :data:`SIG0`; its R (the odometry noise mapped into the pose) and Q are
+    the simulation's own: the filter is honest about the noise.
 
     Introduced in chapter 8; the capstone of chapter 10 drives every argument.
 
@@ -213,120 +288,56 @@ def landmark_loop(
     -------
     LoopRun
     """
-    seed = v.whole(seed, "seed", 0)
     if filter not in FILTERS:
         raise ValueError(f"filter must be one of {FILTERS}, got {filter!r}")
     motion_noise = _noise_scale(motion_noise, "motion_noise")
     sensor_noise = _noise_scale(sensor_noise, "sensor_noise")
     wrap_bearing = v.flag(wrap_bearing, "wrap_bearing")
     gate = None if gate is None else v.positive(gate, "gate", "a distance", "standard deviations")
-    laps = v.whole(laps, "laps", 1)
-    m = DEFAULT_LANDMARKS if landmarks is None else v.matrix(landmarks, "landmarks", cols=2)
-    sensor_range = v.positive(sensor_range, "sensor_range", "a range", "m")
+    drive = {"sensor_range": sensor_range, "laps": laps, "kidnap": kidnap, "dropout": dropout}
+    world = loop_world(seed, motion_noise, sensor_noise, landmarks, **drive)
+    dt = world.dt
+    M = np.diag([world.v_std, world.omega_std]) ** 2  # odometry noise covariance
+    Q = np.diag([world.range_std, world.bearing_std]) ** 2  # measurement noise covariance
+    predict, update = loop_filter(filter, dt, M, Q, wrap_bearing)
+    accept = None if gate is None else gate_within(gate, Q, wrap_bearing)
+    try:
+        track = localize(world, predict, update, SIG0, accept)
+    except ValueError as err:  # a covariance no longer positive semi-definite, at extreme noise
+        raise ValueError(f"the {filter.upper()} broke down with {motion_noise=} and {sensor_noise=}: {err}") from None
+    settings = {"filter": filter, "wrap_bearing": wrap_bearing, "gate": gate, "noise": (motion_noise, sensor_noise)}
+    return _loop_run(world, track, **settings)
 
-    dt = 0.2  # s
-    lap = loop_controls(dt=dt)
-    n_steps, n_marks = laps * len(lap), len(m)
-    dropout = _dropout(dropout)
-    if kidnap is not None:
-        kidnap = v.whole(kidnap, "kidnap")
-        if kidnap >= n_steps:
-            raise ValueError(f"kidnap must be a step below {n_steps}, got {kidnap}")
 
-    # The arguments are checked: from here on the run calls the models' and filters' unchecked cores.
-    # Truth: after a kidnapping the robot is half a lap further on and drives the controls of that place.
-    path = [np.zeros(3)]  # path[i]: where the loop puts the robot before its control i
-    for c in lap:
-        path.append(_unicycle(path[-1], c, dt))
-    start = path[0]
-    shift = np.zeros(n_steps, dtype=int)
-    if kidnap is not None:
-        shift[kidnap:] = len(lap) // 2
-    place = (np.arange(n_steps) + shift) % len(lap)  # which control of the lap the robot drives at step k
-    u = lap[place]
-    truth = np.empty((n_steps, 3))
-    pose = start
-    for k in range(n_steps):
-        if k == kidnap:
-            pose = path[place[k]]  # lifted and set down; the filter is not told
-        pose = _unicycle(pose, u[k], dt)  # x_k = g(x_{k-1}, u_k)
-        truth[k] = pose
-
-    v_std, omega_std = motion_noise * V_STD, motion_noise * OMEGA_STD
-    range_std, bearing_std = sensor_noise * RANGE_STD, sensor_noise * BEARING_STD
-    rng = np.random.default_rng(seed)
-    e = rng.standard_normal((n_steps, 2))  # odometry draws
-    eps = rng.standard_normal((n_steps, n_marks, 2))  # reading draws
-    odometry = u + [v_std, omega_std] * e
-    z, visible = readings(truth, m, sensor_range, range_std, bearing_std, eps)
-    seen = visible.copy()  # readings the sensor delivers
-    if dropout is not None:
-        seen[dropout[0] : dropout[1]] = False
-    used = np.zeros_like(seen)
-
-    M = np.diag([v_std, omega_std]) ** 2  # odometry noise covariance
-    Q = np.diag([range_std, bearing_std]) ** 2  # measurement noise covariance
-    z_residual = _range_bearing_residual if wrap_bearing else None
-    z_mean = _range_bearing_mean if wrap_bearing else None
-    mu, Sig = start.copy(), np.array(SIG0)
-    mu_bar, Sig_bar = np.empty((n_steps, 3)), np.empty((n_steps, 3, 3))
-    mus, Sigs = np.empty((n_steps, 3)), np.empty((n_steps, 3, 3))
-    g = lambda x, c: _unicycle(x, c, dt)  # noqa: E731
-    G = lambda x, c: _unicycle_jacobian(x, c, dt)  # noqa: E731
-    for k in range(n_steps):
-        W = _unicycle_control_jacobian(mu, odometry[k], dt)
-        R = W @ M @ W.T  # R = W M W^T, as in process_noise_of_odometry
-        if filter == "ekf":
-            mu, Sig = _ekf_predict(mu, Sig, odometry[k], g, G, R)
-        else:
-            g_all = lambda chi, c=odometry[k]: g(chi, c)  # every sigma point (a row of chi) at once  # noqa: E731
-            mu, Sig = _ukf_predict(mu, Sig, g_all, R, UKF_LAM, 0.0, _pose_residual, _pose_mean)
-        mu_bar[k], Sig_bar[k] = mu, Sig
-        for j in np.flatnonzero(seen[k]):  # one landmark at a time: sequential updates
-            h = lambda x, mj=m[j]: _range_bearing(x, mj)  # noqa: E731
-            H = lambda x, mj=m[j]: _range_bearing_jacobian(x, mj)  # noqa: E731
-            if filter == "ekf" or gate is not None:  # innovation, H and S: for the EKF's update and either's gate
-                y, Hj, S = _ekf_innovation(mu, Sig, z[k, j], h, H, Q, z_residual)
-            if gate is not None and _mahalanobis(y, S) > gate:
-                continue  # outside the validation gate: rejected
-            used[k, j] = True
-            if filter == "ekf":
-                mu, Sig = _ekf_correct(mu, Sig, y, Hj, S, Q)
-            else:
-                z_hat, S_u, Sig_xz = _ukf_moments(mu, Sig, h, Q, UKF_LAM, 0.0, z_residual, z_mean, _pose_residual)
-                y_u = z[k, j] - z_hat if z_residual is None else z_residual(z[k, j], z_hat)  # innovation
-                mu, Sig = _ukf_correct(mu, Sig, y_u, S_u, gain(Sig_xz, S_u))  # K = Sig_xz S^-1
-            mu[2] = wrap_angle(mu[2])  # the update may push the heading past pi
-        mus[k], Sigs[k] = mu, Sig
-    _check_filter_held(filter, motion_noise, sensor_noise, mu_bar, Sig_bar, mus, Sigs)
-
-    err = truth[:, :2] - mus[:, :2]
-    Sxy = Sigs[:, :2, :2]
+def _loop_run(world: RobotRun, track: Track, *, filter, wrap_bearing, gate, noise) -> LoopRun:
+    """The record of one lap: the world, the filter's track, and the truth measured against it."""
+    err = world.truth[:, :2] - track.mu[:, :2]
+    Sxy = track.Sig[:, :2, :2]
     d2 = np.einsum("ti,tij,tj->t", err, np.linalg.inv(Sxy), err)  # e^T Sig_xy^-1 e
     return LoopRun(
-        t=read_only(dt * np.arange(1, n_steps + 1)),
-        dt=dt,
-        truth=read_only(truth),
-        odometry=read_only(odometry),
-        landmarks=read_only(m),
-        z=read_only(z),
-        used=read_only(used, dtype=bool),
-        rejected=read_only(seen & ~used, dtype=bool),
-        start=read_only(start),
+        t=world.t,
+        dt=world.dt,
+        truth=world.truth,
+        odometry=world.odometry,
+        landmarks=world.landmarks,
+        z=world.z,
+        used=track.used,
+        rejected=world.visible & ~track.used,
+        start=world.start,
         Sig0=SIG0,
-        mu_bar=read_only(mu_bar),
-        Sig_bar=read_only(Sig_bar),
-        mu=read_only(mus),
-        Sig=read_only(Sigs),
-        error=read_only(np.linalg.norm(err, axis=1)),
-        inside=read_only(d2 <= 9.0, dtype=bool),
-        area=read_only(np.pi * np.sqrt(np.linalg.det(Sxy))),
+        mu_bar=track.mu_bar,
+        Sig_bar=track.Sig_bar,
+        mu=track.mu,
+        Sig=track.Sig,
+        error=np.linalg.norm(err, axis=1),
+        inside=d2 <= 9.0,
+        area=np.pi * np.sqrt(np.linalg.det(Sxy)),
         filter=filter,
-        dropout=dropout,
-        motion_noise=motion_noise,
-        sensor_noise=sensor_noise,
-        kidnap=kidnap,
+        dropout=world.dropout,
+        motion_noise=noise[0],
+        sensor_noise=noise[1],
+        kidnap=world.kidnap,
         wrap_bearing=wrap_bearing,
         gate=gate,
-        seed=seed,
+        seed=world.seed,
     )

@@ -16,7 +16,7 @@ import numpy as np
 
 from .. import _validate as v
 from ..models import range_bearing, unicycle, wrap_angle
-from .records import read_only
+from .records import Record, read_only
 
 # The default map: six landmarks around the default loop of :func:`loop_controls`
 # (x from -4 to 4 m, y from 0 to 5 m) and one in its middle, so that with the default
@@ -35,7 +35,7 @@ DEFAULT_LANDMARKS = read_only(
 
 
 @dataclass(frozen=True)
-class RobotRun:
+class RobotRun(Record):
     """One simulated drive; every array has one row per time step ``k = 0 .. T-1``.
 
     Step ``k`` applies control ``u[k]`` for ``dt`` seconds, moving the robot from
@@ -51,7 +51,7 @@ class RobotRun:
     start: np.ndarray  #: (3,) pose before the first step [x, y, theta]
     truth: np.ndarray  #: (T, 3) true pose after each step
     landmarks: np.ndarray  #: (L, 2) landmark positions [mx, my] (m)
-    visible: np.ndarray  #: (T, L) bool: landmark within sensor range of the true pose
+    visible: np.ndarray  #: (T, L) bool: a reading of the landmark: within sensor range, the sensor not blind
     z: np.ndarray  #: (T, L, 2) readings [r, phi] (m, rad), bearing in (-pi, pi]; zeros where not visible
     sensor_range: float  #: the sensor sees landmarks at most this far away (m)
     v_std: float  #: odometry speed noise (m/s)
@@ -59,6 +59,8 @@ class RobotRun:
     range_std: float  #: range noise (m)
     bearing_std: float  #: bearing noise (rad)
     seed: int
+    kidnap: int | None = None  #: step at which the robot was carried half its controls further on
+    dropout: tuple[int, int] | None = None  #: the sensor is blind for steps t0 <= k < t1
 
 
 def loop_controls(
@@ -159,6 +161,45 @@ def readings(truth, landmarks, sensor_range: float, range_std: float, bearing_st
     return z, visible
 
 
+def _dropout(dropout) -> tuple[int, int] | None:
+    if dropout is None:
+        return None
+    if np.ndim(dropout) != 1 or len(dropout) != 2:
+        raise ValueError(f"dropout must be None or a pair of steps (t0, t1), got {dropout!r}")
+    t0, t1 = v.whole(dropout[0], "dropout[0]"), v.whole(dropout[1], "dropout[1]")
+    if t1 < t0:
+        raise ValueError(f"dropout must have t0 <= t1, got {dropout!r}")
+    return t0, t1
+
+
+def true_path(u, dt: float, start, laps: int = 1, kidnap: int | None = None) -> tuple[np.ndarray, np.ndarray]:
+    r"""Where the robot goes: :math:`x_k = g(x_{k-1}, u_k)`, ``u`` driven ``laps`` times.
+
+    With ``kidnap``, at that step the robot is lifted and set down half of ``u`` further
+    on (half a lap of a loop), where it drives on with the controls of that place; the
+    filter is not told.  Introduced in chapter 10.
+
+    Returns
+    -------
+    (truth, u_driven) : shapes (laps T, 3), (laps T, 2)
+        The true pose after each step, and the control the robot executed at it.
+    """
+    n_steps = laps * len(u)
+    shift = np.zeros(n_steps, dtype=int)
+    if kidnap is not None:
+        shift[kidnap:] = len(u) // 2
+    place = (np.arange(n_steps) + shift) % len(u)  # which control of u the robot drives at step k
+    truth, pose = np.empty((n_steps, 3)), start
+    for k in range(n_steps):
+        if k == kidnap:  # lifted and set down where u puts the robot before control place[k]
+            pose = start
+            for c in u[: place[k]]:
+                pose = unicycle(pose, c, dt)
+        pose = unicycle(pose, u[place[k]], dt)  # x_k = g(x_{k-1}, u_k)
+        truth[k] = pose
+    return truth, u[place]
+
+
 def simulate_robot(
     u=None,
     dt: float = 0.2,
@@ -170,6 +211,9 @@ def simulate_robot(
     range_std: float = 0.1,
     bearing_std: float = 0.03,
     seed: int = 0,
+    laps: int = 1,
+    kidnap: int | None = None,
+    dropout=None,
 ) -> RobotRun:
     r"""Drive a unicycle robot under controls ``u``; record noisy odometry and landmark readings.
 
@@ -205,6 +249,13 @@ def simulate_robot(
         Reading noise on the range (m) and the bearing (rad), >= 0.
     seed : int
         Seed of the random generator (>= 0).
+    laps : int
+        Times the robot drives ``u`` (>= 1).
+    kidnap : int, optional
+        At this step the robot is lifted and set down half of ``u`` further on (half a
+        lap of a loop), where it drives on (:func:`true_path`); the filter is not told.
+    dropout : (int, int), optional
+        The sensor is blind for the steps ``t0 <= k < t1``: no readings there.
 
     Returns
     -------
@@ -215,47 +266,57 @@ def simulate_robot(
     if len(u) == 0:
         raise ValueError("u must hold at least one control, got none")
     start = v.vector(start, "start", 3)
-    if landmarks is None:
-        m = DEFAULT_LANDMARKS
-    elif np.size(landmarks) == 0:
-        m = np.empty((0, 2))  # an empty map: nothing to see
-    else:
-        m = v.matrix(landmarks, "landmarks", cols=2)
+    m = _landmark_map(landmarks)
     sensor_range = v.positive(sensor_range, "sensor_range", "a range", "m")
     v_std = v.non_negative(v_std, "v_std", "a standard deviation", "m/s")
     omega_std = v.non_negative(omega_std, "omega_std", "a standard deviation", "rad/s")
     range_std = v.non_negative(range_std, "range_std", "a standard deviation", "m")
     bearing_std = v.non_negative(bearing_std, "bearing_std", "a standard deviation", "rad")
     seed = v.whole(seed, "seed", 0)
-    n_steps, n_marks = len(u), len(m)
+    laps = v.whole(laps, "laps", 1)
+    if kidnap is not None and not v.whole(kidnap, "kidnap") < laps * len(u):
+        raise ValueError(f"kidnap must be a step below {laps * len(u)}, got {kidnap}")
+    dropout = _dropout(dropout)
 
+    stds = {"v_std": v_std, "omega_std": omega_std, "range_std": range_std, "bearing_std": bearing_std}
+    return _drive(u, dt, start, m, sensor_range, stds, seed, laps, kidnap, dropout)
+
+
+def _landmark_map(landmarks) -> np.ndarray:
+    """The checked map (L, 2): :data:`DEFAULT_LANDMARKS` for None, and L may be 0."""
+    if landmarks is None:
+        return DEFAULT_LANDMARKS
+    if np.size(landmarks) == 0:
+        return np.empty((0, 2))  # an empty map: nothing to see
+    return v.matrix(landmarks, "landmarks", cols=2)
+
+
+def _drive(u, dt, start, m, sensor_range, stds, seed, laps, kidnap, dropout) -> RobotRun:
+    """:func:`simulate_robot` once its arguments are checked: the draws, the truth and the readings."""
+    n_steps, n_marks = laps * len(u), len(m)
     rng = np.random.default_rng(seed)
     e = rng.standard_normal((n_steps, 2))  # odometry draws
     eps = rng.standard_normal((n_steps, n_marks, 2))  # reading draws
 
-    truth = np.empty((n_steps, 3))
-    pose = start
-    for k in range(n_steps):
-        pose = unicycle(pose, u[k], dt)  # x_k = g(x_{k-1}, u_k)
-        truth[k] = pose
-    odometry = u + [v_std, omega_std] * e  # u~_k = u_k + noise
-
-    z, visible = readings(truth, m, sensor_range, range_std, bearing_std, eps)
+    truth, u = true_path(u, dt, start, laps, kidnap)
+    odometry = u + [stds["v_std"], stds["omega_std"]] * e  # u~_k = u_k + noise
+    z, visible = readings(truth, m, sensor_range, stds["range_std"], stds["bearing_std"], eps)
+    if dropout is not None:
+        visible[dropout[0] : dropout[1]] = False  # the sensor is blind
 
     return RobotRun(
-        t=read_only(dt * np.arange(1, n_steps + 1)),
+        t=dt * np.arange(1, n_steps + 1),
         dt=dt,
-        u=read_only(u),
-        odometry=read_only(odometry),
-        start=read_only(start),
-        truth=read_only(truth),
-        landmarks=read_only(m),
-        visible=read_only(visible, dtype=bool),
-        z=read_only(z),
+        u=u,
+        odometry=odometry,
+        start=start,
+        truth=truth,
+        landmarks=np.asarray(m),
+        visible=visible,
+        z=z,
         sensor_range=sensor_range,
-        v_std=v_std,
-        omega_std=omega_std,
-        range_std=range_std,
-        bearing_std=bearing_std,
+        **stds,
         seed=seed,
+        kidnap=kidnap,
+        dropout=dropout,
     )

@@ -109,10 +109,8 @@ def run_ukf(ratio: float, n_steps: int, check_every: int) -> None:
     mu, Sig = MU0, SIG0
     z_hooks = {"residual": range_bearing_residual, "mean": range_bearing_mean, "x_residual": pose_residual}
     for t in range(n_steps):
-        mu_bar, Sig_bar = kf.ukf_predict(
-            mu, Sig, CONTROL, g, R, LAM, residual=pose_residual, mean=pose_mean, vectorized=True
-        )
-        mu, Sig = kf.ukf_update(mu_bar, Sig_bar, zs[t], h, Q, LAM, vectorized=True, **z_hooks)
+        mu_bar, Sig_bar = kf.ukf_predict(mu, Sig, CONTROL, g, R, LAM, residual=pose_residual, mean=pose_mean)
+        mu, Sig = kf.ukf_update(mu_bar, Sig_bar, zs[t], h, Q, LAM, **z_hooks)
         if (t + 1) % check_every == 0:
             what = f"R/Q={ratio:g}, step {t}"
             assert np.array_equal(Sig, Sig.T), what
@@ -186,8 +184,8 @@ def test_ukf_covariance_stays_psd_over_1e5_steps():
     zs = pendulum_readings(N_LONG)
     mu, Sig = PEND_MU0, PEND_SIG0
     for t in range(N_LONG):
-        mu_bar, Sig_bar = kf.ukf_predict(mu, Sig, None, pend_g, PEND_R, 1.0, vectorized=True)
-        mu, Sig = kf.ukf_update(mu_bar, Sig_bar, zs[t], pend_h, PEND_Q, 1.0, vectorized=True)
+        mu_bar, Sig_bar = kf.ukf_predict(mu, Sig, None, pend_g, PEND_R, 1.0)
+        mu, Sig = kf.ukf_update(mu_bar, Sig_bar, zs[t], pend_h, PEND_Q, 1.0)
         if (t + 1) % 1000 == 0:
             what = f"step {t}"
             assert np.array_equal(Sig, Sig.T), what

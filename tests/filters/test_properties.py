@@ -111,7 +111,9 @@ def linear_models(draw):
 @given(lm=linear_models())
 def test_ekf_on_a_linear_model_equals_kf(lm):
     F, B, H = lm["F"], lm["B"], lm["H"]
-    mu_bar, Sig_bar = kf.ekf_predict(lm["mu"], lm["Sig"], lm["u"], lambda x, u: F @ x + B @ u, lambda x, u: F, lm["R"])
+    mu_bar, Sig_bar = kf.ekf_predict(
+        lm["mu"], lm["Sig"], lm["u"], lambda chi, u: chi @ F.T + B @ u, lambda x, u: F, lm["R"]
+    )
     mu_bar_kf, Sig_bar_kf = kf.kf_predict(lm["mu"], lm["Sig"], lm["u"], F, B, lm["R"])
     assert_close(mu_bar, mu_bar_kf, scale=1e2)
     assert_close(Sig_bar, Sig_bar_kf, scale=np.abs(Sig_bar_kf).max())
@@ -128,12 +130,12 @@ def test_ukf_on_a_linear_model_equals_kf(lm, lam_choice, lam_free):
     lam = {"0": 0.0, "1": 1.0, "3-n": 3.0 - n, "free": lam_free - n + 1.0}[lam_choice]
     assume(n + lam > 0.05)
     F, B, H = lm["F"], lm["B"], lm["H"]
-    mu_bar, Sig_bar = kf.ukf_predict(lm["mu"], lm["Sig"], lm["u"], lambda x, u: F @ x + B @ u, lm["R"], lam)
+    mu_bar, Sig_bar = kf.ukf_predict(lm["mu"], lm["Sig"], lm["u"], lambda chi, u: chi @ F.T + B @ u, lm["R"], lam)
     mu_bar_kf, Sig_bar_kf = kf.kf_predict(lm["mu"], lm["Sig"], lm["u"], F, B, lm["R"])
     weight = 1.0 + abs(lam) / (n + lam)  # cancellation grows with |w_0|
     assert_close(mu_bar, mu_bar_kf, rtol=1e-8 * weight, scale=1e2)
     assert_close(Sig_bar, Sig_bar_kf, rtol=1e-8 * weight, scale=np.abs(Sig_bar_kf).max())
-    mu, Sig = kf.ukf_update(mu_bar_kf, Sig_bar_kf, lm["z"], lambda x: H @ x, lm["Q"], lam)
+    mu, Sig = kf.ukf_update(mu_bar_kf, Sig_bar_kf, lm["z"], lambda chi: chi @ H.T, lm["Q"], lam)
     mu_kf, Sig_kf = kf.kf_update(mu_bar_kf, Sig_bar_kf, lm["z"], H, lm["Q"])
     assert_close(mu, mu_kf, rtol=1e-8 * weight, scale=1e2 + np.abs(mu_kf).max())
     assert_close(Sig, Sig_kf, rtol=1e-8 * weight, scale=np.abs(Sig_bar_kf).max())

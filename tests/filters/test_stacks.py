@@ -1,4 +1,4 @@
-"""The vectorized paths (all sigma points in one model call) change no result and skip no check."""
+"""The models take stacks of poses, the UKF calls them on every sigma point at once, and kf_gain."""
 
 from __future__ import annotations
 
@@ -35,27 +35,25 @@ def test_models_take_stacks_of_poses():
 
 
 @pytest.mark.parametrize("lam", [0.0, 1.0, 2.0])
-def test_vectorized_ukf_equals_per_point(lam):
+def test_the_ukf_takes_every_sigma_point_at_once_as_one_per_point_would(lam):
     mu, Sig = np.array([1.0, 2.0, 3.0]), np.diag([0.3, 0.2, 0.4])
     R, Q = np.diag([0.01, 0.01, 0.02]), np.diag([0.04, 0.01])
     u, z = np.array([0.5, 0.8]), np.array([5.2, -2.0])
-    for vectorized in (False, True):
-        mb, Sb = kf.ukf_predict(mu, Sig, u, g, R, lam, pose_residual, pose_mean, vectorized=vectorized)
-        m, S = kf.ukf_update(
-            mb, Sb, z, h, Q, lam, range_bearing_residual, range_bearing_mean, pose_residual, vectorized=vectorized
-        )
-        if not vectorized:
+    one_by_one = {"g": lambda chi, u: np.array([g(x, u) for x in chi]), "h": lambda chi: np.array([h(x) for x in chi])}
+    for models in ({"g": g, "h": h}, one_by_one):
+        mb, Sb = kf.ukf_predict(mu, Sig, u, models["g"], R, lam, pose_residual, pose_mean)
+        m, S = kf.ukf_update(mb, Sb, z, models["h"], Q, lam, range_bearing_residual, range_bearing_mean, pose_residual)
+        if models["g"] is g:
             expected = (mb, Sb, m, S)
     for got, want in zip((mb, Sb, m, S), expected, strict=True):
         assert got == pytest.approx(want, abs=1e-12)
-    y_v = kf.unscented_transform(mu, Sig, h, lam, range_bearing_residual, range_bearing_mean, vectorized=True)
-    y_p = kf.unscented_transform(mu, Sig, h, lam, range_bearing_residual, range_bearing_mean)
-    assert y_v[0] == pytest.approx(y_p[0]) and y_v[1] == pytest.approx(y_p[1])
 
 
-def test_vectorized_model_with_wrong_shape_is_named():
+def test_a_model_with_the_wrong_shape_is_named():
     with pytest.raises(ValueError, match="the result of g"):
-        kf.ukf_predict(np.zeros(3), np.eye(3), None, lambda x, u: x[:, :2], np.eye(3), 0.0, vectorized=True)
+        kf.ukf_predict(np.zeros(3), np.eye(3), None, lambda x, u: x[:, :2], np.eye(3), 0.0)
+    with pytest.raises(ValueError, match="the result of h"):
+        kf.ukf_update(np.zeros(3), np.eye(3), [1.0], lambda x: x[0, :1], [[1.0]], 0.0)  # one point's, not all 7
 
 
 def test_kf_gain_matches_the_formula_for_one_two_and_three_readings():
