@@ -113,10 +113,7 @@ def unscented_transform(
     mean : callable ``mean(points, weights) -> array (k,)``, optional
         Weighted mean of outputs (average angles on the circle here).
     beta : float
-        Added to the centre covariance weight, ``wc_0 = w_0 + beta`` (0 by
-        default, the plain transform of the lesson).  The scaled unscented
-        transform with parameters α, κ and β is this one with
-        ``lam = α²(n + κ) - n`` and ``beta = 1 - α² + β``.
+        Added to the centre covariance weight, as in :func:`sigma_points` (0 by default).
 
     Returns
     -------
@@ -196,10 +193,7 @@ def ukf_predict(
         State difference and weighted state mean (for a heading, use
         :func:`kfcourse.models.pose_residual` and :func:`kfcourse.models.pose_mean`).
     beta : float
-        Added to the centre covariance weight, ``wc_0 = w_0 + beta`` (0 by
-        default, the plain transform of the lesson).  The scaled unscented
-        transform with parameters α, κ and β is this one with
-        ``lam = α²(n + κ) - n`` and ``beta = 1 - α² + β``.
+        Added to the centre covariance weight, as in :func:`sigma_points` (0 by default).
 
     Returns
     -------
@@ -258,10 +252,7 @@ def ukf_update(
     x_residual : callable, optional
         State difference, for the cross-covariance.
     beta : float
-        Added to the centre covariance weight, ``wc_0 = w_0 + beta`` (0 by
-        default, the plain transform of the lesson).  The scaled unscented
-        transform with parameters α, κ and β is this one with
-        ``lam = α²(n + κ) - n`` and ``beta = 1 - α² + β``.
+        Added to the centre covariance weight, as in :func:`sigma_points` (0 by default).
 
     Returns
     -------

@@ -18,7 +18,7 @@ from .. import _validate as v
 from ..filters.association import associate
 from ..filters.ekf import ekf_update
 from ..models import range_bearing, range_bearing_jacobian, range_bearing_residual, wrap_angle
-from .records import read_only
+from .records import Record, read_only
 
 # The scene (m, rad).  The belief after the predict step, and where the robot really is.
 SCAN_LANDMARKS = read_only([[3.5, 1.5], [0.5, 3.5], [-3.0, 1.0], [0.0, -3.0]])
@@ -31,7 +31,7 @@ BEARING_STD = 0.03  # rad
 
 
 @dataclass(frozen=True)
-class AssociationScan:
+class AssociationScan(Record):
     """One predicted belief, the map and one scan of unlabelled readings.
 
     ``K`` readings (one per landmark, then the leg's if there is one), ``L`` landmarks.
@@ -51,7 +51,7 @@ class AssociationScan:
 
 
 @dataclass(frozen=True)
-class GatedUpdate:
+class GatedUpdate(Record):
     """Every reading of a scan matched (or rejected) at one gate, and the EKF estimate after the updates."""
 
     gate: float  #: the validation gate gamma (standard deviations)
@@ -105,12 +105,12 @@ def association_scan(seed: int = 0, leg: bool = False) -> AssociationScan:
         mu_bar=SCAN_MU_BAR,
         Sig_bar=SCAN_SIG_BAR,
         landmarks=SCAN_LANDMARKS,
-        Q=read_only(Q),
-        z=read_only(z),
-        source=read_only(source, dtype=int),
-        z_hat=read_only([range_bearing(SCAN_MU_BAR, m) for m in SCAN_LANDMARKS]),  # z_hat_j = h(mu_bar, m_j)
-        S=read_only([Hj @ SCAN_SIG_BAR @ Hj.T + Q for Hj in Hs]),  # S_j = H_j Sig_bar H_j^T + Q
-        leg=read_only(SCAN_LEG) if leg else None,
+        Q=Q,
+        z=z,
+        source=source,
+        z_hat=np.array([range_bearing(SCAN_MU_BAR, m) for m in SCAN_LANDMARKS]),  # z_hat_j = h(mu_bar, m_j)
+        S=np.array([Hj @ SCAN_SIG_BAR @ Hj.T + Q for Hj in Hs]),  # S_j = H_j Sig_bar H_j^T + Q
+        leg=SCAN_LEG if leg else None,
         seed=seed,
     )
 
@@ -169,10 +169,10 @@ def gated_update(scan: AssociationScan, gate: float = 3.0) -> GatedUpdate:
         )
     return GatedUpdate(
         gate=gate,
-        distances=read_only(distances),
-        match=read_only(match, dtype=int),
-        mu=read_only(mu),
-        Sig=read_only(Sig),
+        distances=np.array(distances, dtype=float),
+        match=np.array(match, dtype=int),
+        mu=mu,
+        Sig=Sig,
         error_bar=float(np.linalg.norm(scan.mu_bar[:2] - scan.truth[:2])),
         error=float(np.linalg.norm(mu[:2] - scan.truth[:2])),
     )

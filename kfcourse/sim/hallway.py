@@ -15,7 +15,7 @@ import numpy as np
 
 from .. import _validate as v
 from ..filters.bayes import BOUNDARIES, bayes_predict, bayes_update
-from .records import read_only
+from .records import Record
 
 N_CELLS = 12
 LEFT_DOORS = (0, 3, 5, 8, 10)  #: cells with a door on the robot's left (drawn on the upper wall)
@@ -110,7 +110,7 @@ def start_cell(rng: np.random.Generator, n_cells: int = N_CELLS) -> int:
 
 
 @dataclass(frozen=True)
-class HallwayRun:
+class HallwayRun(Record):
     """One run of the hallway filter: a first look, then ``n_cycles`` of predict and update.
 
     Row ``k`` of every array is the state after the ``k``-th update (row 0: the first look).
@@ -186,12 +186,5 @@ def simulate_hallway(
         readings.append(saw)
         beliefs.append(belief)
     return HallwayRun(
-        read_only(door_map, dtype=None),
-        read_only(cells, dtype=int),
-        read_only(readings, dtype=None),
-        read_only(beliefs),
-        pm,
-        ps,
-        boundary,
-        seed,
+        door_map, np.array(cells, dtype=int), np.array(readings), np.array(beliefs, dtype=float), pm, ps, boundary, seed
     )

@@ -8,11 +8,11 @@ import numpy as np
 
 from .. import _validate as v
 from ..filters.kalman_1d import kf_1d_cycle
-from .records import read_only
+from .records import Record
 
 
 @dataclass(frozen=True)
-class LineRun:
+class LineRun(Record):
     """One simulated run; every array has one entry per time step."""
 
     t: np.ndarray  #: step index
@@ -79,15 +79,4 @@ def simulate_line(
     for k in range(1, n_steps):
         m, s2 = kf_1d_cycle(m, s2, u[k], z[k], R=step_std**2, Q=sensor_std**2)[4:]
         mu[k], var[k] = m, s2
-    return LineRun(
-        read_only(t),
-        read_only(u),
-        read_only(truth),
-        read_only(z),
-        read_only(mu),
-        read_only(var),
-        step_std,
-        sensor_std,
-        seed,
-        read_only(dead_reckoning),
-    )
+    return LineRun(t.astype(float), u, truth, z, mu, var, step_std, sensor_std, seed, dead_reckoning)

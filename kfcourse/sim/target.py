@@ -24,7 +24,7 @@ from .. import _validate as v
 from ..filters.batch import kf_step_batch
 from ..filters.kalman import kf_step
 from ..models import constant_velocity
-from .records import read_only
+from .records import Record, read_only
 
 DT = 0.1  # s between readings
 SPEED = 2.0  # m/s, the target's constant speed
@@ -47,7 +47,7 @@ LEGS = (
 
 
 @dataclass(frozen=True)
-class TargetRun:
+class TargetRun(Record):
     """One turning target and its readings; one row per time step ``k = 0 .. T-1``."""
 
     t: np.ndarray  #: (T,) time (s)
@@ -60,7 +60,7 @@ class TargetRun:
 
 
 @dataclass(frozen=True)
-class TargetEstimates:
+class TargetEstimates(Record):
     """A filter's output over a :class:`TargetRun`; one row per time step."""
 
     mu: np.ndarray  #: (T, 4) estimated state [px, py, vx, vy]
@@ -120,10 +120,10 @@ def simulate_target(seed: int = 0, sensor_std: float = SENSOR_STD) -> TargetRun:
     pos = np.cumsum(vel * DT, axis=0)
     e = np.random.default_rng(seed).standard_normal(pos.shape)
     return TargetRun(
-        t=read_only(DT * np.arange(omega.size)),
-        truth=read_only(np.hstack([pos, vel])),
-        z=read_only(pos + sensor_std * e),
-        turning=read_only(omega != 0, dtype=bool),
+        t=DT * np.arange(omega.size),
+        truth=np.hstack([pos, vel]),
+        z=pos + sensor_std * e,
+        turning=omega != 0,
         dt=DT,
         sensor_std=sensor_std,
         seed=seed,
@@ -180,12 +180,12 @@ def filter_target(run: TargetRun, R, Q) -> TargetEstimates:
     Sig_bar = F @ Sig_all[:-1] @ F.T + R_used[1:]  # Sig_bar = F Sig F^T + R
     S = H @ Sig_bar @ H.T + Q_used[1:]  # innovation covariance S = H Sig_bar H^T + Q
     K_all[1:] = Sig_bar @ H.T @ np.linalg.inv(S)  # K = Sig_bar H^T S^-1
-    return TargetEstimates(read_only(mu_all), read_only(Sig_all), read_only(K_all), read_only(R), read_only(Q))
+    return TargetEstimates(mu_all, Sig_all, K_all, R, Q)
 
 
 # --------------------------------------------------------------- many tracks at once: the NEES
 @dataclass(frozen=True)
-class TrackBatch:
+class TrackBatch(Record):
     """Many constant-velocity targets; arrays are (N tracks, T steps, ...)."""
 
     truth: np.ndarray  #: (N, T, 4) true states
@@ -241,7 +241,7 @@ def simulate_tracks(
         a = accel_std * rng.standard_normal((n_tracks, 2))
         truth[:, k] = truth[:, k - 1] @ F.T + a @ G.T  # x_k = F x_{k-1} + G a_k
     z = truth[:, :, :2] + sensor_std * rng.standard_normal((n_tracks, n_steps, 2))
-    return TrackBatch(read_only(truth), read_only(z), dt, accel_std, sensor_std, seed)
+    return TrackBatch(truth, z, dt, accel_std, sensor_std, seed)
 
 
 def filter_tracks(batch: TrackBatch, R, Q) -> tuple[np.ndarray, np.ndarray]:

@@ -14,11 +14,11 @@ import numpy as np
 
 from .. import _validate as v
 from ..filters.kalman_1d import kf_1d_cycle
-from .records import read_only
+from .records import Record
 
 
 @dataclass(frozen=True)
-class WalkRun:
+class WalkRun(Record):
     """One simulated run of the 1-D Kalman filter.
 
     Every array has shape ``(n_steps,)``; entry ``k - 1`` belongs to time step
@@ -149,38 +149,19 @@ def simulate_walk(
     u = v.scalar(u, "u")
     R_true = v.variance(R_true, "R_true")
     Q_true = v.variance(Q_true, "Q_true")
-    R = R_true if R is None else v.variance(R, "R")
-    Q = Q_true if Q is None else v.variance(Q, "Q")
     velocity = v.scalar(velocity, "velocity")
     x0 = v.scalar(x0, "x0")
-    mu0 = x0 if mu0 is None else v.scalar(mu0, "mu0")
-    var0 = v.variance(var0, "var0")
-    if Q == 0 and R == 0 and var0 == 0:
-        raise ValueError("Q must be > 0 when R and var0 are both 0 (the gain would be 0/0)")
+    R, Q, mu0, var0 = _filter_settings(R, Q, mu0, var0, R_true=R_true, Q_true=Q_true, x0=x0)
 
     w, e = np.random.default_rng(seed).standard_normal((n_steps, 2)).T  # one pair of draws per step
     truth = x0 + np.cumsum(u + velocity + math.sqrt(R_true) * w)  # x_k = x_{k-1} + u + v + w_k,  w ~ N(0, R_true)
     z = truth + math.sqrt(Q_true) * e  # z_k = x_k + delta_k,  delta ~ N(0, Q_true)
-
-    rows = []
-    mu, var = mu0, var0
-    for z_k in z:
-        cyc = kf_1d_cycle(mu, var, u, float(z_k), R=R, Q=Q)
-        rows.append((cyc.mu_bar, cyc.var_bar, cyc.innovation, cyc.var_bar + Q, cyc.K, cyc.mu, cyc.var))
-        mu, var = cyc.mu, cyc.var
-    mu_bar, var_bar, innovation, S, K, mu_k, var_k = np.array(rows).T
     return WalkRun(
-        t=read_only(np.arange(1, n_steps + 1)),
-        u=read_only(np.full(n_steps, u)),
-        truth=read_only(truth),
-        z=read_only(z),
-        mu_bar=read_only(mu_bar),
-        var_bar=read_only(var_bar),
-        innovation=read_only(innovation),
-        S=read_only(S),
-        K=read_only(K),
-        mu=read_only(mu_k),
-        var=read_only(var_k),
+        t=np.arange(1, n_steps + 1, dtype=float),
+        u=np.full(n_steps, u),
+        truth=truth,
+        z=z,
+        **_filter_readings(z, u, mu0, var0, R=R, Q=Q),
         x0=x0,
         mu0=mu0,
         var0=var0,
@@ -191,3 +172,30 @@ def simulate_walk(
         velocity=velocity,
         seed=seed,
     )
+
+
+def _filter_settings(R, Q, mu0, var0, *, R_true: float, Q_true: float, x0: float) -> tuple[float, float, float, float]:
+    """The filter's ``R``, ``Q``, ``mu0`` and ``var0``, checked; ``None`` takes the world's value."""
+    R = R_true if R is None else v.variance(R, "R")
+    Q = Q_true if Q is None else v.variance(Q, "Q")
+    mu0 = x0 if mu0 is None else v.scalar(mu0, "mu0")
+    var0 = v.variance(var0, "var0")
+    if Q == 0 and R == 0 and var0 == 0:
+        raise ValueError("Q must be > 0 when R and var0 are both 0 (the gain would be 0/0)")
+    return R, Q, mu0, var0
+
+
+def _filter_readings(z: np.ndarray, u: float, mu0: float, var0: float, *, R: float, Q: float) -> dict[str, np.ndarray]:
+    """One :func:`kf_1d_cycle` per reading of ``z`` (command ``u`` each step), from ``N(mu0, var0)``.
+
+    Returns the filter's arrays of a :class:`WalkRun` by field name: ``mu_bar``, ``var_bar``,
+    ``innovation``, ``S``, ``K``, ``mu`` and ``var``, each of shape ``(len(z),)``.
+    """
+    rows = []
+    mu, var = mu0, var0
+    for z_k in z:
+        cyc = kf_1d_cycle(mu, var, u, float(z_k), R=R, Q=Q)
+        rows.append((cyc.mu_bar, cyc.var_bar, cyc.innovation, cyc.var_bar + Q, cyc.K, cyc.mu, cyc.var))
+        mu, var = cyc.mu, cyc.var
+    names = ("mu_bar", "var_bar", "innovation", "S", "K", "mu", "var")
+    return dict(zip(names, np.array(rows, dtype=float).T, strict=True))
