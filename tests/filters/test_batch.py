@@ -1,4 +1,5 @@
-"""kf_step_batch: N filters at once equal N calls of kf_step, and bad input is refused."""
+"""``kf_step_batch``: N filters at once equal N calls of ``kf_step`` (whose own worked numbers
+and closed forms are in ``test_kalman.py``), and bad input is refused by name."""
 
 from __future__ import annotations
 
@@ -11,7 +12,15 @@ from kfcourse.models import constant_velocity
 
 N = 25
 
+# ================================================================ worked numbers
+# none: the lesson's numbers go through kf_step (test_kalman.py), which the batch must equal
 
+
+# ================================================================ closed forms
+# none: the batch is checked against kf_step below
+
+
+# ================================================================ properties
 def random_beliefs(rng, N: int, n: int):
     mu = rng.normal(size=(N, n))
     A = rng.normal(size=(N, n, n))
@@ -74,6 +83,7 @@ def test_exported():
     assert kf.filters.kf_step_batch is kf_step_batch
 
 
+# ================================================================ bad input
 def good():
     rng = np.random.default_rng(4)
     F, _, H, R, Q = model()

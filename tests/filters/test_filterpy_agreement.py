@@ -37,6 +37,7 @@ STEPS = 400  # filter steps compared (KF, EKF)
 UKF_STEPS = 150  # filterpy's UKF is slow; the bearing crosses +-pi at steps 76-79
 
 
+# ================================================================ properties (the only section: agreement)
 def assert_same_step(t, ours, theirs):
     (m1, S1), (m2, S2) = ours, theirs
     np.testing.assert_allclose(m1, m2, rtol=1e-7, atol=1e-9, err_msg=f"mean at step {t}")

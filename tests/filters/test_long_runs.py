@@ -1,4 +1,5 @@
-"""The EKF and the UKF keep Σ symmetric positive semi-definite over long runs.
+"""Long runs of the nonlinear filters: the EKF and the UKF keep Σ symmetric positive
+semi-definite.
 
 One run of 10^5 steps per filter on a pendulum observed through the sine of its angle
 (two states, cheap enough for 10^5 steps), and shorter runs of a unicycle robot that
@@ -6,7 +7,8 @@ drives a circle and reads range and bearing to one landmark, with the noise scal
 that R/Q runs from 1e-8 to 1e8 (the angle hooks of both filters in use).  Every few steps the
 result is checked for what a forced symmetrisation cannot fake: it is PSD, the update
 took uncertainty away (Σ̄ - Σ is PSD), and for the EKF it equals the textbook update
-written out here in plain numpy.
+written out here in plain numpy.  (The linear filter's long runs, with a NEES check, are in
+``test_kalman.py``.)
 
 Noise letters follow the course: R = process noise, Q = measurement noise.
 """
@@ -41,6 +43,7 @@ h = partial(kf.range_bearing, landmark=LANDMARK)
 H_jac = partial(kf.range_bearing_jacobian, landmark=LANDMARK)
 
 
+# ================================================================ properties (the only section: long runs)
 def simulate(ratio: float, n_steps: int, seed: int = 4242):
     """Noise matrices for R/Q = ratio and seeded readings of a robot driven by the same model.
 

@@ -1,6 +1,8 @@
-"""The input checks' own paths: a covariance is judged finite, symmetric and positive
-semi-definite on its own scale, and a singular one (a constant-velocity model's process
-noise) passes; the error names the argument and what was expected."""
+"""The input checks' own paths (``kfcourse._validate``): a covariance is judged finite,
+symmetric and positive semi-definite on its own scale, and a singular one (a
+constant-velocity model's process noise) passes; the error names the argument and what
+was expected.  (Each function's bad input is in its subject's file.)
+"""
 
 from __future__ import annotations
 
@@ -9,27 +11,17 @@ import pytest
 
 import kfcourse as kf
 from kfcourse import _validate as v
+from tests.filters.strategies import I2, I3, INF, NAN
 
-NAN, INF = float("nan"), float("inf")
-I2, I3 = np.eye(2), np.eye(3)
-
-
-@pytest.mark.parametrize("bad", [NAN, INF, -INF])
-@pytest.mark.parametrize("which", ["Sig", "R", "Q"])
-def test_the_covariance_that_is_not_finite_is_named(which, bad):
-    covs = {"Sig": I3.copy(), "R": 0.1 * I3, "Q": 0.5 * I2}
-    covs[which][1, 1] = bad
-    with pytest.raises(ValueError, match=rf"^{which} must be finite"):
-        kf.kf_step(np.zeros(3), covs["Sig"], None, [1.0, 2.0], I3, None, np.eye(2, 3), covs["R"], covs["Q"])
+# ================================================================ worked numbers
+# none: the checks have no lesson of their own
 
 
-def test_a_non_finite_entry_off_the_diagonal_is_found_too():
-    R = 0.1 * I3
-    R[0, 2] = R[2, 0] = NAN  # symmetric, so only the finiteness look can catch it
-    with pytest.raises(ValueError, match=r"^R must be finite"):
-        kf.kf_step(np.zeros(3), I3, None, [1.0, 2.0], I3, None, np.eye(2, 3), R, I2)
+# ================================================================ closed forms
+# none: what passes and what does not is below
 
 
+# ================================================================ properties
 def test_huge_finite_covariances_pass():
     big = 1e200 * np.diag([1.0, 2.0, 3.0])  # its sum of squares would overflow
     assert v.covariance(big, "Sig", 3)[2, 2] == 3e200
@@ -68,11 +60,18 @@ def test_usual_shapes_and_the_others():
         v.covariance("big", "Q", 1)
 
 
-def test_kf_step_returns_an_exactly_symmetric_covariance():
-    rng = np.random.default_rng(4)
-    A = rng.normal(size=(4, 4))
-    Sig = A @ A.T + np.eye(4)
-    F, H = rng.normal(size=(4, 4)), rng.normal(size=(2, 4))
-    _, Sig = kf.kf_step(np.zeros(4), Sig, None, [0.3, -0.2], F, None, H, 0.01 * np.eye(4), 0.2 * I2)
-    assert np.array_equal(Sig, Sig.T)
-    assert np.linalg.eigvalsh(Sig).min() > 0
+# ================================================================ bad input
+@pytest.mark.parametrize("bad", [NAN, INF, -INF])
+@pytest.mark.parametrize("which", ["Sig", "R", "Q"])
+def test_the_covariance_that_is_not_finite_is_named(which, bad):
+    covs = {"Sig": I3.copy(), "R": 0.1 * I3, "Q": 0.5 * I2}
+    covs[which][1, 1] = bad
+    with pytest.raises(ValueError, match=rf"^{which} must be finite"):
+        kf.kf_step(np.zeros(3), covs["Sig"], None, [1.0, 2.0], I3, None, np.eye(2, 3), covs["R"], covs["Q"])
+
+
+def test_a_non_finite_entry_off_the_diagonal_is_found_too():
+    R = 0.1 * I3
+    R[0, 2] = R[2, 0] = NAN  # symmetric, so only the finiteness look can catch it
+    with pytest.raises(ValueError, match=r"^R must be finite"):
+        kf.kf_step(np.zeros(3), I3, None, [1.0, 2.0], I3, None, np.eye(2, 3), R, I2)

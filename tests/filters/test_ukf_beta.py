@@ -1,5 +1,6 @@
 """``beta`` (the extra weight on the centre sigma point's covariance term) reaches
-the UKF functions and changes the covariances by exactly the hand-computed amount.
+``sigma_points`` and the UKF functions and changes the covariances by exactly the
+hand-computed amount; a bad ``beta`` is named.
 
 The worked example: x ~ N(2, 1), n = 1, lam = 0, so the sigma points are 2, 3, 1
 with mean weights 0, 1/2, 1/2 and covariance weights beta, 1/2, 1/2.  Through
@@ -9,25 +10,31 @@ beta * 1 + 16.
 
 from __future__ import annotations
 
+import inspect
+
 import numpy as np
 import pytest
+from hypothesis import given
+from hypothesis import strategies as st
 
 import kfcourse as kf
 from kfcourse.models import pose_mean, pose_residual, range_bearing_mean, range_bearing_residual
+from tests.filters.strategies import FAST, reals, spd, square
 
 MU, SIG, LAM = np.array([2.0]), np.array([[1.0]]), 0.0
 R = np.array([[0.5]])  # process noise of the 1-D example
 Q = np.array([[1.0]])  # measurement noise of the 1-D example
 
 
-def square(x):
-    return x**2
-
-
 def square_motion(x, u):
     return x**2
 
 
+# ================================================================ worked numbers
+# none from the lesson: chapter 9 uses beta = 0 (test_ukf.py); the example above is worked below
+
+
+# ================================================================ closed forms
 @pytest.mark.parametrize("beta", [0.0, 0.5, 2.0])
 def test_unscented_transform_covariance_grows_by_beta(beta):
     mu_y, Sig_y = kf.unscented_transform(MU, SIG, square, LAM, beta=beta)
@@ -58,6 +65,42 @@ def test_beta_is_zero_by_default():
     assert kf.unscented_transform(MU, SIG, square, LAM)[1] == pytest.approx(np.array([[16.0]]), abs=1e-12)
     assert kf.ukf_predict(MU, SIG, None, square_motion, R, LAM)[1] == pytest.approx(np.array([[16.5]]), abs=1e-12)
     assert kf.ukf_update(MU, SIG, [6.0], square, Q, LAM)[1] == pytest.approx(np.array([[1.0 / 17.0]]), abs=1e-12)
+
+
+def test_sigma_points_beta_closed_form():
+    # n = 1, lam = 2: w_0 = 2/3, w_i = 1/6; beta = 2 adds to the covariance weight only: wc_0 = 8/3
+    chi, wm, wc = kf.sigma_points([1.0], [[3.0]], 2.0, beta=2.0)
+    np.testing.assert_allclose(chi[:, 0], [1.0, 4.0, -2.0], rtol=1e-14)  # 1 +- sqrt(3 * 3)
+    np.testing.assert_allclose(wm, [2 / 3, 1 / 6, 1 / 6], rtol=1e-14)
+    np.testing.assert_allclose(wc, [8 / 3, 1 / 6, 1 / 6], rtol=1e-14)
+
+
+def test_sigma_points_beta_changes_the_variance_of_x_squared_by_beta_sigma4():
+    # y = x^2 for x ~ N(mu, s2) through the 3 sigma points (hand algebra, see the unscented_1d tests):
+    #   mean mu^2 + s2, variance 4 mu^2 s2 + (lam + beta) s2^2.   mu = 1, s2 = 0.5, lam = 2, beta = 2:
+    #   4 * 0.5 + 4 * 0.25 = 3
+    chi, wm, wc = kf.sigma_points([1.0], [[0.5]], 2.0, beta=2.0)
+    y = chi[:, 0] ** 2
+    y_mean = wm @ y
+    assert y_mean == pytest.approx(1.5, rel=1e-14)
+    assert wc @ (y - y_mean) ** 2 == pytest.approx(3.0, rel=1e-12)
+
+
+# ================================================================ properties
+@FAST
+@given(
+    mu=st.tuples(reals(-5, 5), reals(-5, 5), reals(-5, 5)).map(np.array),
+    Sig=spd(3),
+    lam=st.sampled_from([0.0, 1.0, -1.0, 0.5]),
+    beta=reals(-1, 4),
+)
+def test_sigma_points_beta_only_moves_the_centre_covariance_weight(mu, Sig, lam, beta):
+    chi0, wm0, _ = kf.sigma_points(mu, Sig, lam)
+    chi, wm, wc = kf.sigma_points(mu, Sig, lam, beta=beta)
+    np.testing.assert_array_equal(chi, chi0)
+    np.testing.assert_array_equal(wm, wm0)
+    np.testing.assert_allclose(wc - wm, np.eye(7)[0] * beta, atol=1e-14)
+    assert wc[0] == pytest.approx(lam / (3 + lam) + beta, abs=1e-14)
 
 
 def test_beta_adds_the_centre_outer_product_in_several_dimensions():
@@ -110,6 +153,13 @@ def test_beta_changes_the_update_as_a_larger_innovation_covariance():
     )
 
 
+def test_beta_is_an_optional_keyword():
+    for fn in (kf.unscented_transform, kf.ukf_predict, kf.ukf_update):
+        p = inspect.signature(fn).parameters["beta"]
+        assert p.default == 0.0 and p.kind is p.KEYWORD_ONLY, fn.__name__
+
+
+# ================================================================ bad input
 @pytest.mark.parametrize("bad", [float("nan"), float("inf"), "two", [1.0, 2.0]])
 def test_bad_beta_is_named(bad):
     with pytest.raises(ValueError, match=r"^beta\b"):
@@ -118,11 +168,3 @@ def test_bad_beta_is_named(bad):
         kf.ukf_update(MU, SIG, [6.0], square, Q, LAM, beta=bad)
     with pytest.raises(ValueError, match=r"^beta\b"):
         kf.unscented_transform(MU, SIG, square, LAM, beta=bad)
-
-
-def test_beta_is_an_optional_keyword():
-    import inspect
-
-    for fn in (kf.unscented_transform, kf.ukf_predict, kf.ukf_update):
-        p = inspect.signature(fn).parameters["beta"]
-        assert p.default == 0.0 and p.kind is p.KEYWORD_ONLY, fn.__name__
