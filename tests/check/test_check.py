@@ -1,8 +1,9 @@
 """The exercise checkers: the package's own functions pass, each known mistake is named,
 and a function that raises, returns NaN or the wrong shape gets a clear verdict.
 
-The wrong functions below are written the way a student might write them, independently
-of the checker's own wrong variants.  Noise letters: R = process noise, Q = measurement noise.
+The right and wrong answers the checkers judge are written the way a student might write
+them, in ``tests/check/answers.py``; the tables below pair each with its expected verdict.
+Noise letters: R = process noise, Q = measurement noise.
 """
 
 from __future__ import annotations
@@ -13,6 +14,7 @@ import numpy as np
 import pytest
 
 import kfcourse as kf
+from tests.check import answers
 
 CHECKERS = [
     "bayes_predict",
@@ -62,50 +64,14 @@ def test_the_package_function_passes_with_other_seeds(name, seed):
     assert getattr(kf.check, name)(getattr(kf, name), seed=seed).passed
 
 
-# ----------------------------------------------------- right answers, written by hand
-def hand_bayes_predict(belief, kernel, boundary="wall"):
-    n = len(belief)
-    out = np.zeros(n)
-    for i in range(n):
-        for offset, p in kernel.items():
-            j = (i + offset) % n if boundary == "wrap" else min(max(i + offset, 0), n - 1)
-            out[j] += p * belief[i]
-    return out
-
-
-def hand_kf_step(mu, Sig, u, z, F, B, H, R, Q):
-    mu_bar = F @ mu + B @ u
-    Sig_bar = F @ Sig @ F.T + R
-    K = Sig_bar @ H.T @ np.linalg.inv(H @ Sig_bar @ H.T + Q)
-    return mu_bar + K @ (z - H @ mu_bar), (np.eye(len(mu)) - K @ H) @ Sig_bar
-
-
-def hand_unicycle(state, u, dt):
-    x, y, theta = state
-    V, w = u
-    if abs(w) < 1e-9:
-        x, y = x + V * dt * math.cos(theta), y + V * dt * math.sin(theta)
-    else:
-        x = x + V / w * (math.sin(theta + w * dt) - math.sin(theta))
-        y = y + V / w * (math.cos(theta) - math.cos(theta + w * dt))
-    return np.array([x, y, math.atan2(math.sin(theta + w * dt), math.cos(theta + w * dt))])
-
-
-def hand_sigma_points(mu, Sig, lam):
-    n = len(mu)
-    L = np.linalg.cholesky((n + lam) * Sig)
-    chi = [mu] + [mu + L[:, i] for i in range(n)] + [mu - L[:, i] for i in range(n)]
-    w = [lam / (n + lam)] + [1 / (2 * (n + lam))] * (2 * n)
-    return np.array(chi), np.array(w), np.array(w)
-
-
+# ------------------------------------------------------------ right and wrong answers
 @pytest.mark.parametrize(
     ("name", "fn"),
     [
-        ("bayes_predict", hand_bayes_predict),
-        ("kf_step", hand_kf_step),
-        ("unicycle", hand_unicycle),
-        ("sigma_points", hand_sigma_points),
+        ("bayes_predict", answers.hand_bayes_predict),
+        ("kf_step", answers.hand_kf_step),
+        ("unicycle", answers.hand_unicycle),
+        ("sigma_points", answers.hand_sigma_points),
     ],
 )
 def test_a_right_answer_written_differently_passes(name, fn):
@@ -114,208 +80,34 @@ def test_a_right_answer_written_differently_passes(name, fn):
     assert result.passed, result.message
 
 
-# ------------------------------------------------------ wrong answers, one per mistake
-def predict_backwards(belief, kernel, boundary="wall"):
-    n = len(belief)
-    out = np.zeros(n)
-    for i in range(n):
-        for offset, p in kernel.items():
-            j = (i - offset) % n if boundary == "wrap" else min(max(i - offset, 0), n - 1)  # wrong: minus
-            out[j] += p * belief[i]
-    return out
-
-
-def predict_always_ring(belief, kernel, boundary="wall"):
-    return sum(p * np.roll(belief, offset) for offset, p in kernel.items())  # wrong: ignores boundary
-
-
-def predict_leaky(belief, kernel, boundary="wall"):
-    n = len(belief)
-    out = np.zeros(n)
-    for i in range(n):
-        for offset, p in kernel.items():
-            j = i + offset
-            if boundary == "wrap":
-                out[j % n] += p * belief[i]
-            elif 0 <= j < n:  # wrong: what hits the wall is lost
-                out[j] += p * belief[i]
-    return out
-
-
-def update_unnormalised(belief, likelihood):
-    return np.multiply(likelihood, belief)  # wrong: no eta
-
-
-def kf_1d_swapped(mu, var, u, z, a=1.0, b=1.0, c=1.0, R=0.2, Q=0.1):
-    mu_bar, var_bar = a * mu + b * u, a**2 * var + Q  # wrong: Q in the predict step
-    K = c * var_bar / (c**2 * var_bar + R)
-    return mu_bar + K * (z - c * mu_bar), (1 - K * c) * var_bar
-
-
-def kf_1d_squares_noise(mu, var, u, z, a=1.0, b=1.0, c=1.0, R=0.2, Q=0.1):
-    mu_bar, var_bar = a * mu + b * u, a**2 * var + R**2  # wrong: R is already a variance
-    K = c * var_bar / (c**2 * var_bar + Q**2)
-    return mu_bar + K * (z - c * mu_bar), (1 - K * c) * var_bar
-
-
-def kf_1d_a_once(mu, var, u, z, a=1.0, b=1.0, c=1.0, R=0.2, Q=0.1):
-    mu_bar, var_bar = a * mu + b * u, a * var + R  # wrong: a, not a squared
-    K = c * var_bar / (c**2 * var_bar + Q)
-    return mu_bar + K * (z - c * mu_bar), (1 - K * c) * var_bar
-
-
-def fuse_own_weights(mu1, var1, mu2, var2):
-    return (var1 * mu1 + var2 * mu2) / (var1 + var2), 1 / (1 / var1 + 1 / var2)  # wrong: weights swapped
-
-
-def fuse_squares(mu1, var1, mu2, var2):
-    w1, w2 = 1 / var1**2, 1 / var2**2  # wrong: var1 and var2 are already variances
-    return (w1 * mu1 + w2 * mu2) / (w1 + w2), 1 / (w1 + w2)
-
-
-def fuse_adds(mu1, var1, mu2, var2):
-    K = var1 / (var1 + var2)
-    return mu1 + K * (mu2 - mu1), var1 + var2  # wrong: variances add in a predict, not in a fusion
-
-
-def kf_step_swapped(mu, Sig, u, z, F, B, H, R, Q):
-    return hand_kf_step(mu, Sig, u, z, F, B, H, Q, R)  # wrong: R and Q swapped
-
-
-def kf_step_no_transpose(mu, Sig, u, z, F, B, H, R, Q):
-    mu_bar = F @ mu + B @ u
-    Sig_bar = F @ Sig @ F + R  # wrong: F^T
-    K = Sig_bar @ H.T @ np.linalg.inv(H @ Sig_bar @ H.T + Q)
-    return mu_bar + K @ (z - H @ mu_bar), (np.eye(len(mu)) - K @ H) @ Sig_bar
-
-
-def kf_step_innovation_backwards(mu, Sig, u, z, F, B, H, R, Q):
-    mu_bar = F @ mu + B @ u
-    Sig_bar = F @ Sig @ F.T + R
-    K = Sig_bar @ H.T @ np.linalg.inv(H @ Sig_bar @ H.T + Q)
-    return mu_bar + K @ (H @ mu_bar - z), (np.eye(len(mu)) - K @ H) @ Sig_bar  # wrong: H mu_bar - z
-
-
-def range_bearing_unwrapped(state, landmark):
-    dx, dy = landmark[0] - state[0], landmark[1] - state[1]
-    return np.array([np.hypot(dx, dy), np.arctan2(dy, dx) - state[2]])  # wrong: not wrapped
-
-
-def range_bearing_atan(state, landmark):
-    dx, dy = landmark[0] - state[0], landmark[1] - state[1]
-    return np.array([np.hypot(dx, dy), kf.wrap_angle(np.arctan(dy / dx) - state[2])])  # wrong: atan
-
-
-def jacobian_robot_minus_landmark(state, landmark):
-    dx, dy = state[0] - landmark[0], state[1] - landmark[1]  # wrong: robot minus landmark
-    q = dx**2 + dy**2
-    return np.array([[-dx / np.sqrt(q), -dy / np.sqrt(q), 0], [dy / q, -dx / q, -1]])
-
-
-def jacobian_q_and_r_mixed(state, landmark):
-    dx, dy = landmark[0] - state[0], landmark[1] - state[1]
-    q = dx**2 + dy**2
-    return np.array([[-dx / q, -dy / q, 0], [dy / np.sqrt(q), -dx / np.sqrt(q), -1]])  # wrong: q <-> sqrt(q)
-
-
-def unicycle_no_limit(state, u, dt):
-    x, y, theta = state
-    V, w = u
-    x = x + V / w * (np.sin(theta + w * dt) - np.sin(theta))  # wrong: no branch for w = 0
-    y = y + V / w * (np.cos(theta) - np.cos(theta + w * dt))
-    return np.array([x, y, kf.wrap_angle(theta + w * dt)])
-
-
-def unicycle_no_limit_floats(state, u, dt):
-    x, y, theta = map(float, state)
-    V, w = map(float, u)
-    x = x + V / w * (math.sin(theta + w * dt) - math.sin(theta))  # wrong: raises at w = 0
-    y = y + V / w * (math.cos(theta) - math.cos(theta + w * dt))
-    return np.array([x, y, kf.wrap_angle(theta + w * dt)])
-
-
-def unicycle_unwrapped(state, u, dt):
-    x, y, _ = hand_unicycle(state, u, dt)
-    return np.array([x, y, state[2] + u[1] * dt])  # wrong: heading not wrapped
-
-
-def unicycle_y_backwards(state, u, dt):
-    x, y, theta = state
-    V, w = u
-    if w == 0:
-        return hand_unicycle(state, u, dt)
-    x = x + V / w * (np.sin(theta + w * dt) - np.sin(theta))
-    y = y + V / w * (np.cos(theta + w * dt) - np.cos(theta))  # wrong: the cosines the other way round
-    return np.array([x, y, kf.wrap_angle(theta + w * dt)])
-
-
-def unicycle_euler(state, u, dt):
-    x, y, theta = state
-    V, w = u
-    return np.array([x + V * dt * np.cos(theta), y + V * dt * np.sin(theta), kf.wrap_angle(theta + w * dt)])
-
-
-def sigma_points_rows_of_L(mu, Sig, lam):
-    n = len(mu)
-    L = np.linalg.cholesky((n + lam) * Sig)
-    _, w, _ = hand_sigma_points(mu, Sig, lam)
-    return np.vstack([mu, mu + L, mu - L]), w, w  # wrong: rows of L, not columns
-
-
-def sigma_points_no_root(mu, Sig, lam):
-    n = len(mu)
-    A = (n + lam) * Sig  # wrong: no square root
-    _, w, _ = hand_sigma_points(mu, Sig, lam)
-    return np.vstack([mu, mu + A.T, mu - A.T]), w, w
-
-
-def sigma_points_weights_without_half(mu, Sig, lam):
-    chi, w, _ = hand_sigma_points(mu, Sig, lam)
-    w = np.array([lam / (len(mu) + lam)] + [1 / (len(mu) + lam)] * (2 * len(mu)))  # wrong: no 1/2
-    return chi, w, w
-
-
-def sigma_points_columns(mu, Sig, lam):
-    chi, w, _ = hand_sigma_points(mu, Sig, lam)
-    return chi.T, w, w  # wrong: one point per column
-
-
-def sigma_points_symmetric_root(mu, Sig, lam):
-    n = len(mu)
-    vals, vecs = np.linalg.eigh((n + lam) * Sig)
-    S = vecs @ np.diag(np.sqrt(vals)) @ vecs.T  # a square root, but not the Cholesky factor
-    _, w, _ = hand_sigma_points(mu, Sig, lam)
-    return np.vstack([mu, mu + S.T, mu - S.T]), w, w
-
-
 WRONG = [
-    ("bayes_predict", predict_backwards, "shift_wrong_way"),
-    ("bayes_predict", predict_always_ring, "ignores_boundary"),
-    ("bayes_predict", predict_leaky, "leaks_at_wall"),
-    ("bayes_update", update_unnormalised, "not_normalised"),
-    ("kf_1d_step", kf_1d_swapped, "swapped_R_Q"),
-    ("kf_1d_step", kf_1d_squares_noise, "std_not_var"),
-    ("kf_1d_step", kf_1d_a_once, "a_not_squared"),
-    ("fuse", fuse_own_weights, "wrong_weights"),
-    ("fuse", fuse_squares, "std_not_var"),
-    ("fuse", fuse_adds, "adds_variances"),
-    ("kf_step", kf_step_swapped, "swapped_R_Q"),
-    ("kf_step", kf_step_no_transpose, "missing_transpose"),
-    ("kf_step", kf_step_innovation_backwards, "sign_flip"),
-    ("range_bearing", range_bearing_unwrapped, "unwrapped_angle"),
-    ("range_bearing", range_bearing_atan, "atan_not_atan2"),
-    ("range_bearing_jacobian", jacobian_robot_minus_landmark, "sign_flip"),
-    ("range_bearing_jacobian", jacobian_q_and_r_mixed, "q_not_sqrt_q"),
-    ("unicycle", unicycle_no_limit, "divides_by_omega"),
-    ("unicycle", unicycle_no_limit_floats, "divides_by_omega"),
-    ("unicycle", unicycle_unwrapped, "unwrapped_angle"),
-    ("unicycle", unicycle_y_backwards, "sign_flip"),
-    ("unicycle", unicycle_euler, "euler_step"),
-    ("sigma_points", sigma_points_rows_of_L, "missing_transpose"),
-    ("sigma_points", sigma_points_no_root, "std_not_var"),
-    ("sigma_points", sigma_points_weights_without_half, "wrong_weights"),
-    ("sigma_points", sigma_points_columns, "points_as_columns"),
-    ("sigma_points", sigma_points_symmetric_root, "not_cholesky"),
+    ("bayes_predict", answers.predict_backwards, "shift_wrong_way"),
+    ("bayes_predict", answers.predict_always_ring, "ignores_boundary"),
+    ("bayes_predict", answers.predict_leaky, "leaks_at_wall"),
+    ("bayes_update", answers.update_unnormalised, "not_normalised"),
+    ("kf_1d_step", answers.kf_1d_swapped, "swapped_R_Q"),
+    ("kf_1d_step", answers.kf_1d_squares_noise, "std_not_var"),
+    ("kf_1d_step", answers.kf_1d_a_once, "a_not_squared"),
+    ("fuse", answers.fuse_own_weights, "wrong_weights"),
+    ("fuse", answers.fuse_squares, "std_not_var"),
+    ("fuse", answers.fuse_adds, "adds_variances"),
+    ("kf_step", answers.kf_step_swapped, "swapped_R_Q"),
+    ("kf_step", answers.kf_step_no_transpose, "missing_transpose"),
+    ("kf_step", answers.kf_step_innovation_backwards, "sign_flip"),
+    ("range_bearing", answers.range_bearing_unwrapped, "unwrapped_angle"),
+    ("range_bearing", answers.range_bearing_atan, "atan_not_atan2"),
+    ("range_bearing_jacobian", answers.jacobian_robot_minus_landmark, "sign_flip"),
+    ("range_bearing_jacobian", answers.jacobian_q_and_r_mixed, "q_not_sqrt_q"),
+    ("unicycle", answers.unicycle_no_limit, "divides_by_omega"),
+    ("unicycle", answers.unicycle_no_limit_floats, "divides_by_omega"),
+    ("unicycle", answers.unicycle_unwrapped, "unwrapped_angle"),
+    ("unicycle", answers.unicycle_y_backwards, "sign_flip"),
+    ("unicycle", answers.unicycle_euler, "euler_step"),
+    ("sigma_points", answers.sigma_points_rows_of_L, "missing_transpose"),
+    ("sigma_points", answers.sigma_points_no_root, "std_not_var"),
+    ("sigma_points", answers.sigma_points_weights_without_half, "wrong_weights"),
+    ("sigma_points", answers.sigma_points_columns, "points_as_columns"),
+    ("sigma_points", answers.sigma_points_symmetric_root, "not_cholesky"),
 ]
 
 
@@ -359,7 +151,7 @@ def test_a_function_written_only_in_part_is_not_yet_done():
     def walls_only(belief, kernel, boundary="wall"):
         if boundary == "wrap":
             raise NotImplementedError("rings come later")
-        return hand_bayes_predict(belief, kernel, boundary)
+        return answers.hand_bayes_predict(belief, kernel, boundary)
 
     result = kf.check.bayes_predict(walls_only)
     assert result.passed is False and result.mistake is None and "Not yet" in result.message
@@ -399,7 +191,7 @@ def test_a_function_that_returns_no_numbers_gets_a_clear_verdict():
 def test_a_function_that_changes_its_inputs_does_not_change_the_expected_answer():
     def sloppy(mu, Sig, u, z, F, B, H, R, Q):
         Sig += R  # changes the caller's array
-        return hand_kf_step(mu, Sig - R, u, z, F, B, H, R, Q)
+        return answers.hand_kf_step(mu, Sig - R, u, z, F, B, H, R, Q)
 
     assert kf.check.kf_step(sloppy).passed
 
@@ -423,7 +215,7 @@ def test_anything_but_a_function_is_refused():
 
 # ------------------------------------------------------------------------ the display
 def test_the_verdict_displays_in_a_notebook():
-    result = kf.check.kf_step(kf_step_no_transpose)
+    result = kf.check.kf_step(answers.kf_step_no_transpose)
     assert repr(result) == result.message
     page = result._repr_html_()
     assert "<pre>" in page and "Likely mistake" in page and "&lt;" not in result.headline
@@ -432,7 +224,7 @@ def test_the_verdict_displays_in_a_notebook():
 
 
 def test_the_same_seed_gives_the_same_verdict_and_another_seed_other_cases():
-    first = kf.check.unicycle(unicycle_y_backwards, seed=5)
-    assert first.message == kf.check.unicycle(unicycle_y_backwards, seed=5).message
-    odd = kf.check.kf_step(kf_step_no_transpose, seed=0).details
-    assert odd != kf.check.kf_step(kf_step_no_transpose, seed=1).details
+    first = kf.check.unicycle(answers.unicycle_y_backwards, seed=5)
+    assert first.message == kf.check.unicycle(answers.unicycle_y_backwards, seed=5).message
+    odd = kf.check.kf_step(answers.kf_step_no_transpose, seed=0).details
+    assert odd != kf.check.kf_step(answers.kf_step_no_transpose, seed=1).details
