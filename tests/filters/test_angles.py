@@ -200,3 +200,10 @@ def test_case_ids_are_unique():
 def test_wrap_angle_still_refuses_a_number_that_is_not_finite(bad):
     with pytest.raises(ValueError, match=r"^a must be finite \(no NaN or inf\)"):
         kf.wrap_angle(bad)
+
+
+def test_pose_residual_checks_both_poses():
+    with pytest.raises(ValueError, match=r"^pose_residual b must be finite"):
+        kf.models.pose_residual(np.zeros(3), [0.0, np.nan, 0.0])
+    with pytest.raises(ValueError, match=r"^pose_residual b must have shape"):
+        kf.models.pose_residual(np.zeros(3), np.zeros(2))

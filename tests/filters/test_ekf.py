@@ -229,3 +229,11 @@ def test_the_valid_baselines_do_not_raise():
 def test_hook_that_is_not_callable(call):
     with pytest.raises(ValueError, match=r"\b(residual|mean) must be callable"):
         call()
+
+
+def test_the_predicted_covariance_is_exactly_symmetric():
+    rng = np.random.default_rng(7)
+    A = rng.normal(size=(3, 3))
+    g, G = (lambda x, u: kf.unicycle(x, u, 0.5)), (lambda x, u: kf.unicycle_jacobian(x, u, 0.5))
+    _, Sig_bar = kf.ekf_predict(rng.normal(size=3), A @ A.T + np.eye(3), [0.7, 0.4], g, G, 0.01 * np.eye(3))
+    assert np.array_equal(Sig_bar, Sig_bar.T)

@@ -312,3 +312,12 @@ def test_the_valid_baselines_do_not_raise():
 def test_empty_covariance():
     with pytest.raises(ValueError, match=r"^Sig must not be empty"):
         kf.kf_predict(np.zeros(0), np.zeros((0, 0)), None, np.zeros((0, 0)), None, np.zeros((0, 0)))
+
+
+def test_the_predicted_covariance_is_exactly_symmetric():
+    rng = np.random.default_rng(6)
+    A, F = rng.normal(size=(4, 4)), rng.normal(size=(4, 4))
+    for _ in range(20):  # F Sig F^T + R rounds differently above and below the diagonal in most cases
+        _, Sig_bar = kf.kf_predict(np.zeros(4), A @ A.T + np.eye(4), None, F, None, 0.01 * np.eye(4))
+        assert np.array_equal(Sig_bar, Sig_bar.T)
+        A, F = rng.normal(size=(4, 4)), rng.normal(size=(4, 4))

@@ -337,3 +337,14 @@ def test_hook_that_is_not_callable(call):
 def test_message_says_what_the_argument_is(call, message):
     """A step, a distance or a standard deviation is not called a variance."""
     assert_raises_saying(call, message)
+
+
+@pytest.mark.parametrize("jacobian", [kf.unicycle_jacobian, kf.unicycle_control_jacobian])
+def test_a_jacobian_of_a_stack_of_poses_is_refused(jacobian):
+    with pytest.raises(ValueError, match=r"^state must have shape \(3,\)"):
+        jacobian(np.zeros((4, 3)), [0.5, 0.1], 0.2)  # a Jacobian is taken at one pose
+
+
+def test_a_three_dimensional_state_is_refused():
+    with pytest.raises(ValueError, match=r"^state must have shape \(3,\) or \(N, 3\)"):
+        kf.unicycle(np.zeros((2, 2, 3)), [0.5, 0.1], 0.2)

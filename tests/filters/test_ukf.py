@@ -290,3 +290,17 @@ def test_a_model_with_the_wrong_shape_is_named():
         kf.ukf_predict(np.zeros(3), np.eye(3), None, lambda x, u: x[:, :2], np.eye(3), 0.0)
     with pytest.raises(ValueError, match="the result of h"):
         kf.ukf_update(np.zeros(3), np.eye(3), [1.0], lambda x: x[0, :1], [[1.0]], 0.0)  # one point's, not all 7
+
+
+def test_a_mean_hook_that_is_not_callable_is_named():
+    with pytest.raises(ValueError, match=r"^mean must be callable"):
+        kf.ukf_update(np.zeros(2), np.eye(2), [1.0], lambda chi: chi[:, :1], [[1.0]], 1.0, mean="circular")
+
+
+@pytest.mark.parametrize("lam", [0.0, 1.0])
+def test_the_predicted_covariance_is_exactly_symmetric(lam):
+    rng = np.random.default_rng(5)
+    A = rng.normal(size=(3, 3))
+    g = lambda chi, u: kf.unicycle(chi, u, 0.5)  # noqa: E731
+    _, Sig_bar = kf.ukf_predict(rng.normal(size=3), A @ A.T + np.eye(3), [0.7, 0.4], g, 0.01 * np.eye(3), lam)
+    assert np.array_equal(Sig_bar, Sig_bar.T)
