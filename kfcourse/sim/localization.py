@@ -133,6 +133,9 @@ def localize(world: RobotRun, predict: Callable, update: Callable, Sig0, accept:
     """The localization loop of chapter 8: at each step predict with the odometry, then for each
     landmark in view, gate its reading and update with it, one landmark at a time.
 
+    Introduced in chapter 8; chapter 7's :func:`~kfcourse.sim.run_ekf` and chapter 10's
+    :func:`landmark_loop` run it.
+
     Parameters
     ----------
     world : RobotRun
