@@ -33,14 +33,6 @@ def _predict_inputs(mu, Sig, u, F, B, R):
     return mu, v.covariance(Sig, "Sig", n), u, F, B, v.covariance(R, "R", n)
 
 
-def _update_inputs(mu_bar, Sig_bar, z, H, Q):
-    """``mu_bar, Sig_bar, z, H, Q`` checked, as float arrays."""
-    mu_bar = v.vector(mu_bar, "mu_bar")
-    Sig_bar = v.covariance(Sig_bar, "Sig_bar", mu_bar.size)
-    z = v.vector(z, "z")
-    return mu_bar, Sig_bar, z, v.matrix(H, "H", z.size, mu_bar.size), v.covariance(Q, "Q", z.size)
-
-
 def kf_predict(mu, Sig, u, F, B, R) -> tuple[np.ndarray, np.ndarray]:
     r"""Kalman predict step, equations (1) and (2) of chapter 5.
 
@@ -125,7 +117,8 @@ def kf_update(mu_bar, Sig_bar, z, H, Q) -> tuple[np.ndarray, np.ndarray]:
     -------
     (mu, Sig) : shapes (n,), (n, n)
     """
-    mu_bar, Sig_bar, z, H, Q = _update_inputs(mu_bar, Sig_bar, z, H, Q)
+    mu_bar, Sig_bar, z, Q = v.update_inputs(mu_bar, Sig_bar, z, Q)
+    H = v.matrix(H, "H", z.size, mu_bar.size)
     S = H @ Sig_bar @ H.T + Q  # (3) innovation covariance
     try:
         K = Sig_bar @ H.T @ np.linalg.inv(S)  # (3) Kalman gain
