@@ -53,13 +53,6 @@ def get(url: str, headers: dict[str, str] | None = None) -> tuple[int, bytes]:
             return error.code, error.read()
 
 
-class NoRedirect(urllib.request.HTTPRedirectHandler):
-    """An opener handler that hands a redirect back as an HTTPError instead of following it."""
-
-    def redirect_request(self, *args, **kwargs):
-        return None
-
-
 class Served:
     """A command that serves: its output lines, and the first address it prints that matches ``url_pattern``.
 

@@ -33,8 +33,9 @@ from pathlib import Path
 
 import pytest
 
-from tests.servers import ALARMING, NoRedirect, Served, free_port, get, tracked_hashes
+from tests.servers import ALARMING, Served, free_port, get, tracked_hashes
 from tools import course
+from tools.course import NoRedirect
 
 ROOT = Path(__file__).resolve().parents[1]
 START_TIMEOUT_S = 120

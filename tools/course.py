@@ -152,21 +152,23 @@ def next_free_port(port: int) -> int:
     return next(p for p in range(port + 1, 65536) if not port_taken(p))
 
 
+class NoRedirect(urllib.request.HTTPRedirectHandler):
+    """An opener handler that hands a redirect back as an HTTPError instead of following it."""
+
+    def redirect_request(self, *args, **kwargs):
+        return None
+
+
 def logs_in(base: str, token: str) -> bool:
     """True when the Jupyter server at ``base`` logs ``token`` in.
 
     Its login page, given a token it knows, redirects to the ``next`` page it is asked for
     (here a fresh, random one); given any other token, it shows the login form.
     """
-
-    class Keep(urllib.request.HTTPRedirectHandler):
-        def redirect_request(self, *args, **kwargs):
-            return None
-
     page = f"/kfcourse-{secrets.token_hex(8)}"
     url = f"{base}login?" + urllib.parse.urlencode({"token": token, "next": page})
     try:
-        with urllib.request.build_opener(Keep).open(url, timeout=2):
+        with urllib.request.build_opener(NoRedirect).open(url, timeout=2):
             return False
     except urllib.error.HTTPError as error:
         with error:

@@ -18,7 +18,8 @@ from pathlib import Path
 
 import pytest
 
-from tests.servers import ALARMING, NoRedirect, Served, free_port
+from tests.servers import ALARMING, Served, free_port
+from tools.course import NoRedirect
 
 try:
     from playwright.sync_api import TimeoutError as PlaywrightTimeoutError
