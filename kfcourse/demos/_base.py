@@ -28,6 +28,7 @@ import ipywidgets as widgets
 from ..plots.style import PIXEL_DENSITY, FigureRenderer
 
 FRAME_INTERVAL = 0.08  # s between frames while running: 12.5 pictures a second
+REST_AFTER = 0.3  # s without a change after which the light picture gives way to the crisp one
 FRAME_GAP = 0.02  # s the kernel always rests between frames, to hear Pause and slider moves
 ANIMATION_INTERVAL_MS = 120  # between the pictures of :meth:`Demo.animation`: a run in a few seconds
 DISPLAY_WIDTH = 950  # CSS px: about the width JupyterLab stretches a demo's picture to beside its side bar
@@ -54,14 +55,19 @@ class Demo(widgets.VBox):
     layout : list, optional
         The rows under the picture; each row is a list of control names (or
         widgets, e.g. a table that ``draw`` fills), or a single one.  By default
-        one row per control.
+        one row per control (none if ``beside`` places them all).
+    beside : list, optional
+        Rows in the same form, in a column to the right of the picture: for a
+        demo whose picture is tall, so that the picture and its controls fit a
+        laptop's screen together.
     frames : int, optional
         Number of animation frames.  Adds the controls ``play`` (Run/Pause) and
         ``frame`` (a slider to scrub); they set ``model.frame``.
     display_width : int
         CSS pixels the picture is shown at, at most: ``DISPLAY_WIDTH`` unless the
-        demo keeps its picture narrower (with the image's layout).  The picture
-        is rendered ``PIXEL_DENSITY`` times as many pixels wide.
+        demo keeps its picture narrower.  A narrower page shrinks it; nothing
+        enlarges it.  The picture is rendered ``PIXEL_DENSITY`` times as many
+        pixels wide.
 
     Attributes
     ----------
@@ -71,8 +77,11 @@ class Demo(widgets.VBox):
     renderer : FigureRenderer
         Turns the figure into PNG bytes.
     image : ipywidgets.Image
-        The picture: a JPEG ``PIXEL_DENSITY * display_width`` pixels wide, so that it stays
-        sharp where it is shown about ``display_width`` CSS pixels wide on a HiDPI screen.
+        The picture.  At rest, a JPEG ``PIXEL_DENSITY * display_width`` pixels wide, so that
+        it stays sharp where it is shown about ``display_width`` CSS pixels wide on a HiDPI
+        screen.  While a control moves or Run plays, a light WebP of half the pixels
+        (:meth:`FigureRenderer.light`); the crisp picture replaces it on Pause, at the end of
+        a run, and ``REST_AFTER`` seconds after the last change.
     display_width : int
         CSS pixels the picture is shown at.
 
@@ -93,6 +102,7 @@ class Demo(widgets.VBox):
         draw: Callable[[], None],
         controls: dict,
         layout: list | None = None,
+        beside: list | None = None,
         frames: int | None = None,
         display_width: int = DISPLAY_WIDTH,
     ):
@@ -100,6 +110,7 @@ class Demo(widgets.VBox):
         self.renderer = renderer
         self._draw = draw
         self._task = None
+        self._rest_timer = None
         bound = dict(controls)
         if frames is not None:
             bound = {**self._player(frames), **bound}
@@ -109,20 +120,56 @@ class Demo(widgets.VBox):
             self._bind(control, method)
         self.display_width = display_width
         renderer.set_pixel_width(PIXEL_DENSITY * display_width)
-        self.image = widgets.Image(format="jpeg")
+        # Shown at display_width CSS px, shrunk to fit a narrower page, never enlarged (an app's
+        # full window would otherwise stretch it); the height follows the picture's shape.
+        size = widgets.Layout(width=f"{display_width}px", max_width="100%", min_width="0", height="auto")
+        self.image = widgets.Image(format="jpeg", layout=size)
         self.image.add_class("kf-figure")
         cap = widgets.HTML(f"<div style='color:#333;font-size:13px;line-height:1.4'>{caption}</div>")
         cap.add_class("kf-caption")
-        rows = [self._row(row) for row in (layout if layout is not None else list(self.controls))]
-        super().__init__([cap, self.image, *rows])
+        if layout is None:
+            layout = [] if beside is not None else list(self.controls)
+        picture = self.image
+        if beside is not None:
+            column = widgets.VBox([self._row(row) for row in beside], layout=widgets.Layout(flex="0 0 auto"))
+            picture = widgets.HBox([self.image, column], layout=widgets.Layout(align_items="flex-start"))
+        super().__init__([cap, picture, *(self._row(row) for row in layout)])
         self.add_class("kf-demo")
         self.add_class(f"kf-demo-{name}")
         self.refresh()
 
     def refresh(self, *_) -> None:
-        """Update the artists from the model and show the new picture."""
+        """Update the artists from the model and show the crisp picture."""
         self._draw()
-        self.image.value = self.renderer.jpeg()
+        self._show_crisp()
+
+    def _moved(self) -> None:
+        """After a change: a light picture now, the crisp one once nothing has changed for a while.
+
+        Without an event loop to wait on (a script, a test), the crisp picture follows at once.
+        """
+        self._draw()
+        try:
+            loop = asyncio.get_running_loop()
+        except RuntimeError:
+            self._show_crisp()
+            return
+        self._cancel_rest()
+        with self.image.hold_sync():  # the format and the bytes reach the page in one message
+            self.image.format = "webp"
+            self.image.value = self.renderer.light()
+        self._rest_timer = loop.call_later(REST_AFTER, self._show_crisp)
+
+    def _cancel_rest(self) -> None:
+        if self._rest_timer is not None:
+            self._rest_timer.cancel()
+            self._rest_timer = None
+
+    def _show_crisp(self) -> None:
+        self._cancel_rest()
+        with self.image.hold_sync():
+            self.image.format = "jpeg"
+            self.image.value = self.renderer.jpeg()
 
     # --- Pictures for pages without a kernel ------------------------------------------------------
 
@@ -179,14 +226,14 @@ class Demo(widgets.VBox):
 
             def on_click(_) -> None:
                 method()
-                self.refresh()
+                self._moved()
 
             control.on_click(on_click)
         else:
 
             def on_change(change) -> None:
                 method(change["new"])
-                self.refresh()
+                self._moved()
 
             control.observe(on_change, "value")
 
@@ -234,6 +281,7 @@ class Demo(widgets.VBox):
             self._task.cancel()
             self._task = None
         if not change["new"]:
+            self._show_crisp()  # paused, or at the last frame: the picture to study
             return
         try:
             loop = asyncio.get_running_loop()

@@ -173,7 +173,6 @@ def _picture(model: HallwayModel) -> tuple[FigureRenderer, Callable[[], None]]:
         if ax.get_ylim()[1] != top:
             ax.set_yticks([t for t in MaxNLocator(6).tick_values(0, top) if t <= 1.0 + 1e-9])
             ax.set_ylim(0, top)  # after the ticks, which may reach a rounding past the top and widen it
-            renderer.invalidate()
         update_belief_bars(bars, model.belief)
         colour = palette.PREDICTION if model.phase == "predicted" else palette.ESTIMATE
         for bar in bars:

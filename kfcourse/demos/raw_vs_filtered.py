@@ -104,10 +104,9 @@ def raw_vs_filtered(seed: int = 0) -> Demo:
         robot.set_data([t[-1]], [run.mu[k - 1]])
         e_raw, e_dr, e_est = model.errors()
         view, top = model.view_limits()
-        if ax.get_ylim() != view or ax_err.get_ylim()[1] != top:  # changes rarely: only then redraw the axes
+        if ax.get_ylim() != view or ax_err.get_ylim()[1] != top:
             ax.set_ylim(*view)
             ax_err.set_ylim(0, top)
-            renderer.invalidate()
         err_raw.set_data(t, e_raw[:k])
         err_dr.set_data(t, e_dr[:k])
         err_est.set_data(t, e_est[:k])

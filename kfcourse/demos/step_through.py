@@ -187,7 +187,6 @@ def _picture(model: StepThroughModel) -> tuple[FigureRenderer, Callable[[], None
         if ax.get_xlim() != (lo, hi) or ax.get_ylim()[1] != top:
             ax.set_xlim(lo, hi)
             ax.set_ylim(0, top)
-            renderer.invalidate()
         status.set_text(_status(m))
 
     return renderer, draw

@@ -76,7 +76,6 @@ def trust_slider(seed: int = 0) -> Demo:
         top = nice_limit(1.1 * peak)
         if ax.get_ylim()[1] != top:
             ax.set_ylim(0, top)
-            renderer.invalidate()
         update_gain_gauge(gauge, model.K)
         narrowest = min(model.var_pred, model.var_meas)
         if var_f < narrowest:

@@ -147,20 +147,34 @@ def tick_text(value: float) -> str:
 
 PIXEL_DENSITY = 2  # device pixels per CSS pixel on a HiDPI screen ("2x", "Retina")
 JPEG_QUALITY = 90  # with full-resolution colour: text and thin lines stay clean at 2x
+LIGHT_QUALITY = 80  # WebP quality of the half-size pictures sent while something moves
 
 
 class FigureRenderer:
-    """Render a figure to PNG or JPEG bytes, redrawing only what moves.
+    """Render a figure to PNG, JPEG or WebP bytes, redrawing only what moves.
 
     Artists listed in ``dynamic`` are marked animated: a full draw caches the
-    static background once, and each later :meth:`png` or :meth:`jpeg` restores
-    it and draws only the dynamic artists (blitting), which is what makes a
-    slider feel immediate.  Call :meth:`invalidate` after changing anything
-    static (axis limits, labels).
+    static background once, and each later picture restores it and draws only
+    the dynamic artists (blitting), which is what makes a slider feel immediate.
 
-    :meth:`jpeg` is the fast one (a 1900-pixel-wide picture encodes in a few ms,
-    a PNG of it takes several times longer); :meth:`png` is lossless, for
-    pictures stored once.
+    The renderer decides by itself when the background must be drawn again.
+    Matplotlib marks a figure *stale* whenever one of its static artists changes
+    (an axis limit, a tick, a label, a title, any text or line not in ``dynamic``)
+    and does not for animated artists, so a picture is blitted while the figure
+    is not stale and drawn in full when it is.  Plots then draw their real data
+    with real ticks and never keep books on what the background shows.
+
+    :meth:`jpeg` is the crisp picture (a 1900-pixel-wide picture encodes in a few ms,
+    a PNG of it takes several times longer); :meth:`light` is the same picture at
+    half the pixels as a lossy WebP, about a seventh of the bytes, for pictures that
+    last a fraction of a second on their way over a network link; :meth:`png` is
+    lossless, for pictures stored once.
+
+    Attributes
+    ----------
+    full_draws : int
+        How many times the whole figure was drawn (the first picture, then once per
+        change to the background).
     """
 
     def __init__(self, fig: Figure, dynamic: list[Artist] = ()):
@@ -169,10 +183,7 @@ class FigureRenderer:
         for artist in self.dynamic:
             artist.set_animated(True)
         self._background = None
-
-    def invalidate(self) -> None:
-        """Draw the whole static background again at the next picture (after a change to anything static)."""
-        self._background = None
+        self.full_draws = 0
 
     @property
     def pixel_width(self) -> int:
@@ -191,8 +202,7 @@ class FigureRenderer:
         """
         if not np.isfinite(width) or width <= 0:
             raise ValueError(f"width must be a positive number of pixels, got {width!r}")
-        self.fig.set_dpi(width / self.fig.get_figwidth())
-        self.invalidate()
+        self.fig.set_dpi(width / self.fig.get_figwidth())  # marks the figure stale: drawn in full next time
 
     def png(self) -> bytes:
         """The current picture as PNG bytes (lossless)."""
@@ -201,9 +211,20 @@ class FigureRenderer:
         return buf.getvalue()
 
     def jpeg(self) -> bytes:
-        """The current picture as JPEG bytes (fast; for pictures that change while dragging)."""
+        """The current picture as JPEG bytes, every pixel: the crisp picture a student studies."""
         buf = io.BytesIO()
         self._render("RGBX").save(buf, format="jpeg", quality=JPEG_QUALITY, subsampling=0)  # RGBX: no copy
+        return buf.getvalue()
+
+    def light(self) -> bytes:
+        """The current picture at half the pixels in each direction, as lossy WebP bytes.
+
+        For a picture that is replaced within a fraction of a second (a slider being
+        dragged, a run playing): a fifth to a tenth of :meth:`jpeg`'s bytes, so that
+        it crosses a slow link in time for the next one.
+        """
+        buf = io.BytesIO()
+        self._render("RGBX").reduce(2).save(buf, format="webp", quality=LIGHT_QUALITY, method=0)
         return buf.getvalue()
 
     def image(self) -> Image.Image:
@@ -213,11 +234,12 @@ class FigureRenderer:
     def _render(self, mode: str) -> Image.Image:
         """Draw what changed; the canvas as an image in ``mode`` (RGBA or RGBX) sharing its memory."""
         canvas = self.fig.canvas
-        if self._background is None:
+        if self._background is None or self.fig.stale:
             canvas.draw()  # static artists only: animated ones are skipped
-            if self.fig.get_layout_engine() is not None:
-                self.fig.set_layout_engine("none")  # keep the layout found once; it is slow to redo
+            self.fig.set_layout_engine("none")  # keep the layout found once; it is slow to redo
             self._background = canvas.copy_from_bbox(self.fig.bbox)
+            self.fig.stale = False  # from here, any change to a static artist marks it stale again
+            self.full_draws += 1
         else:
             canvas.restore_region(self._background)
         for artist in self.dynamic:

@@ -192,7 +192,6 @@ def test_reset_goes_back_to_the_prior():
 def assert_density_label_not_clipped(d, what: str) -> None:
     """The y axis label and tick labels, as a full redraw places them with the layout found
     once, lie inside the picture."""
-    d.renderer.invalidate()
     d.renderer.png()
     fig = d.renderer.fig
     renderer = fig.canvas.get_renderer()

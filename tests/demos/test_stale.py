@@ -1,10 +1,12 @@
 """No stale pictures: after every change the blitted picture equals a full redraw.
 
-Each demo re-renders only its ``dynamic`` artists over a cached background.  If an
-artist that moves is missing from ``dynamic``, or a change to something static
-(axis limits, labels) forgets ``renderer.invalidate()``, the picture shown is stale.
-Here every demo is driven through every control and, after each change, the picture
-the demo shows is compared pixel for pixel with a full redraw of the same state.
+Each demo re-renders only its ``dynamic`` artists over a background its renderer keeps,
+and the renderer draws that background again by itself when the figure is stale (a
+limit, a tick, a label or any static artist changed).  If the renderer missed such a
+change, or an artist that moves were missing from ``dynamic``, the picture shown would
+be stale.  Here every demo is driven through every control and, after each change, the
+picture the demo shows is compared pixel for pixel with a full redraw of the same state.
+The renderer's rule itself is tested in ``tests/plots/test_renderer.py``.
 """
 
 from __future__ import annotations
@@ -23,7 +25,7 @@ def assert_not_stale(demo, what: str) -> None:
     # The picture shown, lossless: the canvas the demo's JPEG was just encoded from, as RGB pixels
     # (encoding them as a PNG would only double the test's time).
     shown = np.asarray(demo.renderer.fig.canvas.buffer_rgba())[..., :3].copy()
-    demo.renderer.invalidate()
+    demo.renderer.fig.stale = True  # what a change to the background does: the next picture is drawn in full
     full = np.asarray(demo.renderer.image())
     assert shown.shape == full.shape, what
     differ = np.any(shown != full, axis=-1)

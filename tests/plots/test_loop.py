@@ -101,7 +101,7 @@ def test_a_new_run_changes_the_tick_labels_never_the_axes():
         assert label.get_text() == f"\u2212{strip_limit(demo.model.run):g}"
         assert all(ax.get_ylim() == (-1.0, 1.0) for ax in strips_axes)
         shown = np.asarray(demo.renderer.image(), dtype=float)
-        demo.renderer.invalidate()
+        demo.renderer.fig.stale = True
         full = np.asarray(demo.renderer.image(), dtype=float)
         assert (np.abs(shown - full).max(axis=2) > 40).sum() == 0
     assert len(tops) >= 4  # the limit did change on the way
