@@ -8,7 +8,9 @@ For each demo, every slider is swept back and forth across its range, every
 button pressed, every toggle and choice flipped through its values, and the
 animation frame stepped; each change is timed from the moment the control's
 value is set until the demo's image widget holds the new picture (observers run
-synchronously, so that is the time the kernel is busy).
+synchronously, so that is the time the kernel is busy).  The changes are made inside
+an event loop, as in the kernel, so the picture timed is the light one a moving control
+sends; the crisp one follows once the student stops and is not in these figures.
 Targets: median <= 50 ms, p95 <= 100 ms.  The column "frame ms" is the median
 of the animation frame changes alone: what one picture of Run costs the kernel
 (Run shows one every 80 ms).
@@ -16,6 +18,7 @@ of the animation frame changes alone: what one picture of Run costs the kernel
 
 from __future__ import annotations
 
+import asyncio
 import time
 
 import ipywidgets as widgets
@@ -75,11 +78,16 @@ def measure(name: str) -> tuple[list[float], list[float]]:
     return samples, frames
 
 
+async def in_event_loop(name: str) -> tuple[list[float], list[float]]:
+    """:func:`measure` where the demo finds a running event loop, as it does in the kernel."""
+    return measure(name)
+
+
 def main(names=DEMOS) -> None:
     print(f"{'demo':<20}{'changes':>8}{'median ms':>11}{'p95 ms':>9}{'max ms':>9}{'frame ms':>10}")
     ok = True
     for name in names:
-        samples, frames = measure(name)
+        samples, frames = asyncio.run(in_event_loop(name))
         ms = np.array(samples)
         med, p95 = np.median(ms), np.percentile(ms, 95)
         ok &= med <= MEDIAN_TARGET and p95 <= P95_TARGET
