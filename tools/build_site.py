@@ -10,10 +10,14 @@ typeset in the reader's browser by a copy of MathJax 2.7 from the ``jupyter-serv
 package (requirements-dev.txt), served from ``_static/mathjax`` beside the pages: no CDN.
 
 A page has no kernel, so a demo's live widget cannot show there.  A demo shown as the last
-value of a cell also hands the notebook a PNG of its first frame (``Demo._repr_mimebundle_``);
-the page shows that picture under the demo's caption, and for a demo with Run/Pause also a
-short animation of its run (``Demo.animation``, recorded here in the same kernel, as a
-``.webp`` file in ``media/``).  ``site/demos.json`` lists the pages and their demo pictures.
+value of a cell also hands the notebook a PNG of the picture it shows at first
+(``Demo._repr_mimebundle_``); the page shows that picture with the demo's caption under it,
+and for a demo with Run/Pause also a short recording of its run (``tools/recording.py``, run
+in the same kernel, saved as a ``.webp`` file in ``media/``), as many pixels wide as the
+still and shown as wide.  ``site/demos.json`` lists the pages and their demo pictures.
+
+The ``# NBVAL_CHECK_OUTPUT`` line that opens the cells whose printed numbers the tests check
+is left out of the pages: it speaks to the test runner, not to a reader.
 """
 
 from __future__ import annotations
@@ -40,18 +44,24 @@ PROBE_MIME = "application/vnd.kfcourse.demo+json"
 CHAPTER = re.compile(r"\d\d_[a-z0-9_]+\.ipynb")
 CELL_TIMEOUT_S = 600
 MATHJAX_URL = "_static/mathjax/MathJax.js?config=TeX-AMS-MML_HTMLorMML-full,Safe"
+RECORDING = ROOT / "tools" / "recording.py"
+NBVAL_MARKER = re.compile(r"\A# NBVAL_[A-Z_]+[ \t]*\r?(\n|\Z)")  # a first line that speaks to nbval alone
 
-# Run in the notebook's kernel after a cell that showed a demo: its caption, and for a demo
-# with Run/Pause its run as an animation.  The widget is found by the model id of its view.
+# Run in the notebook's kernel after a cell that showed a demo: its caption (the first of the
+# demo's rows), and for a demo with Run/Pause a recording of its run, made by tools/recording.py
+# loaded from its file.  The widget is found by the model id of its view.
 PROBE = """\
-import base64 as _b64, ipywidgets as _w
+import base64 as _b64, importlib.util as _iu, ipywidgets as _w
 from IPython.display import display as _display
 _demo = _w.widget_serialization["from_json"]("IPY_MODEL_{model_id}", None)
+_spec = _iu.spec_from_file_location("kfsite_recording", {recording!r})
+_recording = _iu.module_from_spec(_spec)
+_spec.loader.exec_module(_recording)
 _display({{"{mime}": {{
     "caption": _demo.children[0].value,
-    "animation": _b64.b64encode(_demo.animation()).decode() if "frame" in _demo.controls else None,
+    "recording": _b64.b64encode(_recording.record_run(_demo)).decode() if "frame" in _demo.controls else None,
 }}}}, raw=True)
-del _demo
+del _demo, _spec, _recording
 """
 
 TEMPLATE = r"""{%- extends 'index.html.j2' -%}
@@ -75,9 +85,10 @@ MathJax.Hub.Config({
   nav.kf-nav { display: flex; justify-content: space-between; gap: 1em; padding: 0.6em 1em;
     font: 14px/1.4 var(--jp-ui-font-family, sans-serif); border-bottom: 1px solid #ddd; }
   nav.kf-nav.kf-bottom { border-top: 1px solid #ddd; border-bottom: none; margin-top: 2em; }
-  figure.kf-demo-static { margin: 0.5em 0; max-width: 950px; }
-  figure.kf-demo-static img { max-width: 100%; height: auto; display: block; margin: 0.4em 0; }
-  figure.kf-demo-static figcaption.kf-note { color: #666; font-size: 12px; font-style: italic; }
+  div.kf-demo-static { max-width: 950px; }
+  div.kf-demo-static figure { margin: 0.5em 0 1em; }
+  div.kf-demo-static img { max-width: 100%; height: auto; display: block; margin: 0.4em 0; }
+  div.kf-demo-static .kf-note { color: #666; font-size: 12px; font-style: italic; margin-top: 0.3em; }
 </style>
 {%- endblock extra_css -%}
 {%- block body_header -%}
@@ -140,7 +151,7 @@ def mathjax_folder() -> Path:
 
 class SiteClient(NotebookClient):
     """Executes a notebook and, after every cell that showed a demo, asks the kernel for the demo's
-    caption and animation; the demo's output becomes a static figure."""
+    caption and the recording of its run; the demo's output becomes a static figure."""
 
     def __init__(self, nb, *, media: Path, stem: str, **kwargs):
         super().__init__(nb, **kwargs)
@@ -169,35 +180,47 @@ class SiteClient(NotebookClient):
 
     async def _static_demo(self, out, cell_index: int):
         model_id = out["data"][WIDGET_VIEW]["model_id"]
-        probe = nbformat.v4.new_code_cell(PROBE.format(model_id=model_id, mime=PROBE_MIME))
+        probe = nbformat.v4.new_code_cell(PROBE.format(model_id=model_id, mime=PROBE_MIME, recording=str(RECORDING)))
         await super().async_execute_cell(probe, cell_index, store_history=False)
         found = [o["data"][PROBE_MIME] for o in probe.outputs if PROBE_MIME in o.get("data", {})]
         if not found:
             raise RuntimeError(f"{self.stem}: cell {cell_index}: no answer about demo {model_id}: {probe.outputs}")
         info = found[0]
-        k = len(self.demos)
-        width = out.get("metadata", {}).get("image/png", {}).get("width", 950)
-        parts = [
-            f"<div class='kf-caption' style='color:#333;font-size:13px;line-height:1.4'>{info['caption']}</div>",
-            f"<img class='kf-demo-picture' width='{width}' alt='the demo, first frame'"
-            f" src='data:image/png;base64,{out['data']['image/png']}'>",
-        ]
         record = {"cell": cell_index, "picture": True, "animation": None}
-        if info["animation"]:
-            name = f"{self.stem}-demo{k}.webp"
-            (self.media / name).write_bytes(base64.b64decode(info["animation"]))
+        if info["recording"]:
+            name = f"{self.stem}-demo{len(self.demos)}.webp"
+            (self.media / name).write_bytes(base64.b64decode(info["recording"]))
             record["animation"] = f"media/{name}"
-            parts += [
-                "<figcaption class='kf-note'>Its run, as Run shows it:</figcaption>",
-                f"<img class='kf-demo-animation' width='{width}' alt='the demo, its run' src='media/{name}'>",
-            ]
-        parts.append(
-            "<figcaption class='kf-note'>A picture of the demo. Open this notebook in JupyterLab to use its controls."
-            "</figcaption>"
-        )
         self.demos.append(record)
-        figure = "<figure class='kf-demo-static'>" + "".join(parts) + "</figure>"
+        width = out.get("metadata", {}).get("image/png", {}).get("width", 950)
+        figure = static_figure(info["caption"], out["data"]["image/png"], record["animation"], width)
         return nbformat.v4.new_output("display_data", data={"text/html": figure})
+
+
+def static_figure(caption: str, png_base64: str, recording: str | None, width: int) -> str:
+    """A demo on a page without a kernel, shown ``width`` CSS px wide: its picture with the
+    caption under it, then the recording of its run (if it has one) with a note under it."""
+    still = (
+        f"<figure class='kf-demo-still'><img class='kf-demo-picture' width='{width}' alt='the demo as it opens'"
+        f" src='data:image/png;base64,{png_base64}'><figcaption>"
+        f"<div class='kf-caption' style='color:#333;font-size:13px;line-height:1.4'>{caption}</div>"
+        "<div class='kf-note'>A picture of the demo. Open this notebook in JupyterLab to use its controls.</div>"
+        "</figcaption></figure>"
+    )
+    run = (
+        f"<figure class='kf-demo-run'><img class='kf-demo-animation' width='{width}' alt='the demo, its run'"
+        f" src='{recording}'><figcaption class='kf-note'>Its run, as Run shows it.</figcaption></figure>"
+        if recording
+        else ""
+    )
+    return f"<div class='kf-demo-static' style='max-width:{width}px'>{still}{run}</div>"
+
+
+def without_nbval_markers(nb) -> None:
+    """Drop the first line of every code cell that only tells nbval what to check."""
+    for cell in nb.cells:
+        if cell.cell_type == "code":
+            cell.source = NBVAL_MARKER.sub("", cell.source, count=1)
 
 
 def nav(pages: list[dict], i: int) -> str:
@@ -256,6 +279,7 @@ def build(out: Path, folder: Path) -> list[dict]:
             resources={"metadata": {"path": str(path.parent)}},
         )
         client.execute()
+        without_nbval_markers(nb)
         nb.metadata.pop("widgets", None)
         nb.metadata["title"] = pages[i]["title"]  # the page's <title>
         body, _ = exporter.from_notebook_node(nb, resources={"kf_nav": nav(pages, i)})

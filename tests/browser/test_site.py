@@ -5,7 +5,9 @@ have its page, linked from the index in order; on every page the equations are t
 by the bundled MathJax, every picture of the site has loaded (above all each demo's first
 frame, and the recording of its run where it has one), no cell failed, no script, style or
 font comes from outside the site (pictures may: the Binder badges), and every link inside
-the site leads to a page (and anchor) that exists.
+the site leads to a page (and anchor) that exists.  A demo's caption sits under its
+picture; the recording of its run is as sharp as the still (as many pixels, shown as
+wide) and light enough for a page; nbval's ``# NBVAL_CHECK_OUTPUT`` markers stay off the pages.
 """
 
 from __future__ import annotations
@@ -31,6 +33,8 @@ REPO_ROOT = Path(__file__).resolve().parents[2]
 ARTIFACTS = Path(__file__).resolve().parent / "artifacts"
 BUILD_TIMEOUT_S = 1800
 MATHJAX_TIMEOUT_MS = 60_000
+MAX_RECORDING_BYTES = 1_000_000  # a recording of a run: a few hundred kB
+NBVAL_MARKER = "# NBVAL_CHECK_OUTPUT"
 # A cell that shows a demo ends with the demo's constructor, e.g. ``kf.demos.tracker(seed=0)``.
 DEMO_CALL = re.compile(r"^kf\.demos\.\w+\(.*\)\s*;?\s*$")
 
@@ -51,6 +55,12 @@ def demo_cells(path: Path) -> int:
     nb = nbformat.read(path, as_version=4)
     last_lines = [c.source.strip().splitlines()[-1] for c in nb.cells if c.cell_type == "code" and c.source.strip()]
     return sum(bool(DEMO_CALL.match(line)) for line in last_lines)
+
+
+def marked_cells(path: Path) -> list[str]:
+    """The code under the marker of every cell whose output nbval checks."""
+    nb = nbformat.read(path, as_version=4)
+    return [c.source.split("\n", 1)[1] for c in nb.cells if c.cell_type == "code" and c.source.startswith(NBVAL_MARKER)]
 
 
 def has_math(path: Path) -> bool:
@@ -121,6 +131,18 @@ JS_PAGE_STATE = r"""() => ({
         'script[type="application/vnd.jupyter.widget-view+json"], .jupyter-widgets').length
         + (document.body.innerText.includes('Demo(children') ? 1 : 0),
     links: Array.from(document.querySelectorAll('a[href]')).map(a => a.href),
+    code: Array.from(document.querySelectorAll('.jp-InputArea-editor')).map(e => e.innerText),
+    nbvalShown: document.body.innerText.includes('NBVAL_'),
+    demos: Array.from(document.querySelectorAll('.kf-demo-static')).map(d => {
+        const box = e => e && e.getBoundingClientRect();
+        const follows = (a, b) => !!(a && b) && Boolean(a.compareDocumentPosition(b) & Node.DOCUMENT_POSITION_FOLLOWING)
+            && box(b).top >= box(a).bottom - 1;
+        const still = d.querySelector('img.kf-demo-picture'), run = d.querySelector('img.kf-demo-animation');
+        const size = i => i && {natural: i.naturalWidth, shown: Math.round(box(i).width)};
+        return {still: size(still), run: size(run),
+            captionUnderPicture: follows(still, d.querySelector('.kf-caption')),
+            noteUnderRecording: run ? follows(run, d.querySelector('.kf-demo-run figcaption')) : null};
+    }),
 })"""
 
 
@@ -149,7 +171,7 @@ def test_chapter_page(context, site_url, site, chapter):
         )
         state = page.evaluate(JS_PAGE_STATE)
         ARTIFACTS.mkdir(parents=True, exist_ok=True)
-        figures = page.locator("figure.kf-demo-static")
+        figures = page.locator(".kf-demo-static")
         for i in range(figures.count()):
             figures.nth(i).screenshot(path=ARTIFACTS / f"site__{notebook.stem}__demo{i}.png")
         links = state["links"]
@@ -177,6 +199,16 @@ def test_chapter_page(context, site_url, site, chapter):
     recorded = [d["animation"] for d in entry["demos"] if d["animation"]]
     animations = [i for i in state["images"] if "kf-demo-animation" in i["cls"]]
     assert len(animations) == len(recorded) and len(entry["demos"]) == len(pictures)
+    assert len(state["demos"]) == len(pictures)
+    for k, demo in enumerate(state["demos"]):
+        assert demo["captionUnderPicture"], f"demo {k}: its caption is not under its picture"
+        if demo["run"] is not None:
+            assert demo["noteUnderRecording"], f"demo {k}: the recording's note is not under it"
+            assert demo["run"] == demo["still"], f"demo {k}: the recording is not drawn and shown as the still is"
+
+    assert not state["nbvalShown"], "a page shows an nbval marker"
+    for code in marked_cells(notebook):  # the code under the marker is still there
+        assert code.strip() in [c.strip() for c in state["code"]], f"a checked cell lost its code: {code[:80]!r}"
 
     assert not outside, f"the page needs scripts, styles or fonts from outside the site: {outside}"
     site_failures = [f for f in failed if "/_static/mathjax/fonts/" not in f]  # MathJax probes fonts it may lack
@@ -206,10 +238,12 @@ def assert_links_resolve(context, site_url: str, links: list[str]) -> None:
 
 
 def test_every_run_pause_demo_has_a_recording(site):
-    """A demo with Run/Pause gets an animation of its run; at least one chapter has such a demo."""
+    """A demo with Run/Pause gets a recording of its run; at least one chapter has such a demo,
+    and none weighs down its page."""
     manifest = json.loads((site / "demos.json").read_text(encoding="utf-8"))
     recordings = [d["animation"] for p in manifest["pages"] for d in p["demos"] if d["animation"]]
     assert recordings, "no demo recorded its run"
     for rel in recordings:
         data = (site / rel).read_bytes()
         assert data[:4] == b"RIFF" and data[8:12] == b"WEBP", rel
+        assert len(data) <= MAX_RECORDING_BYTES, f"{rel}: {len(data) / 1e6:.2f} MB"

@@ -10,7 +10,6 @@ from __future__ import annotations
 import base64
 import io
 
-import ipywidgets as widgets
 import numpy as np
 import pytest
 from PIL import Image
@@ -20,9 +19,6 @@ from kfcourse.demos._base import DISPLAY_WIDTH
 from kfcourse.plots.style import PIXEL_DENSITY, FigureRenderer, new_figure
 
 DEMOS = kf.demos.__all__
-# The demos with a run to play, named here so that collecting the tests builds no demo;
-# test_demo_picture_is_rendered_for_a_hidpi_screen checks the list against every demo.
-FRAME_DEMOS = ["landmark_loop", "raw_vs_filtered", "tracker"]
 WIDGET_VIEW = "application/vnd.jupyter.widget-view+json"
 
 
@@ -117,30 +113,6 @@ def test_the_static_picture_follows_the_demo():
     demo.controls["frame"].value = 10
     after = base64.b64decode(demo._repr_mimebundle_()[0]["image/png"])
     assert before != after
-
-
-@pytest.mark.parametrize("name", FRAME_DEMOS)
-def test_animation_of_a_run(name):
-    demo = getattr(kf.demos, name)(seed=0)
-    frame, shown = demo.controls["frame"].value, bytes(demo.image.value)
-    anim = picture(demo.animation(pictures=8, width=400))
-    assert anim.format == "WEBP" and anim.size[0] == 400
-    assert 2 <= anim.n_frames <= 8
-    anim.seek(0)
-    first = np.asarray(anim.convert("RGB"), float)
-    anim.seek(anim.n_frames - 1)
-    last = np.asarray(anim.convert("RGB"), float)
-    assert np.abs(first - last).mean() > 0.5  # it moves
-    assert demo.controls["frame"].value == frame and bytes(demo.image.value) == shown  # left as it was
-
-
-def test_animation_needs_frames_and_pictures():
-    with pytest.raises(ValueError, match="frames"):
-        kf.demos.covariance_ellipse(seed=0).animation()
-    demo = kf.demos.tracker(seed=0)
-    with pytest.raises(ValueError, match="pictures"):
-        demo.animation(pictures=1)
-    assert isinstance(demo.controls["play"], widgets.ToggleButton)
 
 
 def test_a_chart_in_a_notebook_is_drawn_for_a_hidpi_screen_at_its_own_size():
