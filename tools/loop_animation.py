@@ -3,8 +3,9 @@
 One lap with the sensor blind for a stretch (the demo's dropout window) and
 junk odometry (process noise at the demo's maximum, chapter 10's third prompt):
 the ellipse balloons while the robot drives on odometry alone and collapses at
-the first reading back.  Drawn with the same map and strips as the demo, written as
-an animated GIF with Pillow.
+the first reading back.  Drawn from the demo's own model and view (the map and the
+error strips), one picture per step as Run plays them, written as an animated GIF
+with Pillow.
 
     python tools/loop_animation.py [docs/screenshots/10_capstone.gif]
 """
@@ -17,9 +18,8 @@ from pathlib import Path
 
 from PIL import Image
 
-import kfcourse as kf
-from kfcourse.demos.landmark_loop import DROPOUT, GATE
-from kfcourse.plots.loop import error_strips, loop_figure, loop_map, update_error_strips, update_loop_map
+from kfcourse.demos.landmark_loop import LoopModel
+from kfcourse.plots.loop import loop_view, update_loop_view
 from kfcourse.plots.style import FigureRenderer
 
 OUT = Path("docs/screenshots/10_capstone.gif")
@@ -31,27 +31,37 @@ MAX_BYTES = 2_000_000
 MOTION_NOISE = 10.0  # the process-noise slider at its maximum
 
 
-def frames(run) -> list[Image.Image]:
-    """Every EVERY-th step of ``run`` as a picture, the last step always included."""
-    fig, ax_map, strip_axes = loop_figure(run)
-    fig.set_dpi(DPI)
-    view = loop_map(ax_map, run, 0)
-    strips = error_strips(strip_axes, run, 0)
-    renderer = FigureRenderer(fig, [*view.moving, *strips.moving])
-    steps = list(range(0, run.t.size, EVERY))
-    if steps[-1] != run.t.size - 1:
-        steps.append(run.t.size - 1)
+def prompt_3() -> LoopModel:
+    """The demo's model at chapter 10's third prompt: dropout on, process noise at its maximum."""
+    model = LoopModel(seed=0)
+    model.set_dropout(True)
+    model.set_motion_noise(MOTION_NOISE)
+    return model
+
+
+def frames(model) -> list[Image.Image]:
+    """Every EVERY-th step of the model's run as a picture, the last step always included.
+
+    The model's ``frame`` is left at the last step.
+    """
+    model.frame = 0
+    view = loop_view(model)
+    view.fig.set_dpi(DPI)
+    renderer = FigureRenderer(view.fig, view.moving)
+    T = model.run.t.size
+    steps = list(range(0, T, EVERY))
+    if steps[-1] != T - 1:
+        steps.append(T - 1)
     pictures = []
     for k in steps:
-        update_loop_map(view, run, k)
-        update_error_strips(strips, run, k)
+        model.frame = k
+        update_loop_view(view, model)
         pictures.append(Image.open(io.BytesIO(renderer.png())).convert("RGB"))
     return pictures
 
 
 def main(out: Path = OUT) -> None:
-    run = kf.sim.landmark_loop(seed=0, dropout=DROPOUT, motion_noise=MOTION_NOISE, gate=GATE)
-    pictures = frames(run)
+    pictures = frames(prompt_3())
     montage = Image.new("RGB", (pictures[0].width, pictures[0].height * 8))  # one palette from across the lap
     for i, k in enumerate(range(0, len(pictures), -(-len(pictures) // 8))):
         montage.paste(pictures[k], (0, i * pictures[0].height))

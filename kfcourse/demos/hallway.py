@@ -2,18 +2,14 @@
 
 from __future__ import annotations
 
-from collections.abc import Callable
+from functools import partial
 
 import ipywidgets as widgets
 import numpy as np
-from matplotlib.lines import Line2D
-from matplotlib.patches import Rectangle
-from matplotlib.ticker import FormatStrFormatter, MaxNLocator
 
 from ..filters.bayes import bayes_predict, bayes_update
-from ..plots import palette
-from ..plots.artists import belief_bars, update_belief_bars
-from ..plots.style import FigureRenderer, new_figure
+from ..plots.hallway import hallway_view, update_hallway
+from ..plots.style import FigureRenderer
 from ..sim.hallway import (
     BOUNDARY,
     MOTION_RELIABILITY,
@@ -30,7 +26,6 @@ from ._base import Demo, button, slider
 
 DOORS = hallway_doors()  # (2, N_CELLS): doors on the left (row 0) and right (row 1) wall
 DOORS.flags.writeable = False
-DOOR_COLOUR = "#b07a4a"  # brown: a door in the hallway map
 
 
 class HallwayModel:
@@ -38,6 +33,26 @@ class HallwayModel:
 
     Predict and Update draw from one seeded generator in the same order as
     :func:`kfcourse.sim.hallway.simulate_hallway`, so alternating them replays that run.
+
+    Attributes
+    ----------
+    belief : ndarray, shape (N_CELLS,)
+        bel(x) after the last step.
+    true_cell : int
+        Where the robot really is (hidden from the filter).
+    phase : str
+        What the last step was: ``"predicted"`` or ``"updated"``.
+    steps : int
+        Moves since the last Reset.
+    saw_door : ndarray of bool, shape (2,)
+        The last reading: a door on the left wall, on the right wall.
+    likelihood : ndarray, shape (N_CELLS,)
+        p(z | x) of the last reading, at the sensor reliability set now.
+    eta : float
+        The last update's normaliser.
+    motion_reliability, sensor_reliability : float
+    boundary : str
+        ``"wrap"`` (a loop) or ``"wall"`` (walls at both ends).
     """
 
     def __init__(
@@ -84,6 +99,7 @@ class HallwayModel:
         return self.sensor_reliability != self.used_reliability
 
     def set_motion_reliability(self, p: float) -> None:
+        """Used from the next Predict on."""
         self.motion_reliability = p
 
     def set_sensor_reliability(self, p: float) -> None:
@@ -92,101 +108,8 @@ class HallwayModel:
         self.likelihood = door_likelihood(self.doors, self.saw_door, p)
 
     def set_boundary(self, boundary: str) -> None:
+        """``"wrap"`` or ``"wall"``, used from the next Predict on."""
         self.boundary = boundary
-
-
-def _status(model: HallwayModel) -> str:
-    """The text at the top right: what the last button did, and the belief's total."""
-    left, right = ("door" if seen else "no door" for seen in model.saw_door)
-    if model.phase == "predicted":
-        moves = f"{model.steps} move{'s' if model.steps != 1 else ''} since Reset"
-        text = rf"after Predict ({moves}): $\overline{{bel}}$ is shifted and blurred"
-    else:
-        text = f"after Update: left “{left}”, right “{right}”, η = {model.eta:.2f}"
-        if model.likelihood_is_stale():
-            text = f"{text}\norange: at the new reliability, not used yet"
-    return f"{text}\nΣ bel = {model.belief.sum():.3f}"
-
-
-def _setup(model: HallwayModel) -> str:
-    """The text at the top left: the motion kernel, the sensor's reliability and the corridor's ends."""
-    k = motion_kernel(model.motion_reliability)
-    ends = "loop (wrap)" if model.boundary == "wrap" else "walls"
-    return (
-        f"motion: one cell right {k[1]:.2f}, stall {k[0]:.2f}\n"
-        f"each wall read right {model.sensor_reliability:.2f} of the time\nends: {ends}"
-    )
-
-
-def _hallway_map(ax_map, model: HallwayModel) -> tuple[list, Line2D]:
-    """The hallway map: the upper wall is on the robot's left (it drives right), the lower wall on its right.
-
-    Returns
-    -------
-    (end_walls, robot)
-        The walls at both ends (shown when the corridor has walls) and the true robot's marker.
-    """
-    ax_map.set_ylim(0, 1)
-    ax_map.set_yticks([0.9, 0.1], ["left wall", "right wall"], fontsize=8)
-    ax_map.tick_params(axis="y", length=0)
-    ax_map.grid(False)
-    cells = np.arange(N_CELLS)
-    for side, y in ((0, 0.8), (1, 0.0)):
-        ax_map.axhline(y + 0.1, color=palette.INK, lw=1.2, zorder=1)
-        for c in cells[model.doors[side]]:
-            ax_map.add_patch(Rectangle((c - 0.35, y), 0.7, 0.2, color=DOOR_COLOUR, lw=0, zorder=2))
-    end_walls = [ax_map.axvline(x, color=palette.INK, lw=4, zorder=2) for x in (-0.5, N_CELLS - 0.5)]
-    (robot,) = ax_map.plot([model.true_cell], [0.5], marker=">", ms=13, color=palette.TRUTH, zorder=3)
-    robot.set_markeredgecolor("#666666")
-    return end_walls, robot
-
-
-def _picture(model: HallwayModel) -> tuple[FigureRenderer, Callable[[], None]]:
-    """The belief's bars over the hallway map, and the sensor's likelihood under it.
-
-    Returns
-    -------
-    (renderer, draw)
-        ``draw()`` shows the model's belief, true cell, likelihood and settings.
-    """
-    fig, (ax, ax_map, ax_lik) = new_figure(8.0, 4.8, nrows=3, sharex=True, gridspec_kw={"height_ratios": [3, 0.7, 1.1]})
-    ax.set_xlim(-0.6, N_CELLS - 0.4)
-    ax.set_ylim(0, 1.0)
-    ax.set_ylabel("belief  bel(x)")
-    ax.yaxis.set_major_formatter(FormatStrFormatter("%.2f"))  # labels of one width: the layout, found once, fits all
-    bars = belief_bars(ax, model.belief)
-    status = ax.text(0.99, 0.97, "", transform=ax.transAxes, ha="right", va="top", fontsize=10)
-    setup = ax.text(0.01, 0.97, "", transform=ax.transAxes, ha="left", va="top", fontsize=9, color=palette.INK)
-    end_walls, robot = _hallway_map(ax_map, model)
-    ax_lik.set_ylim(0, 1.05)
-    ax_lik.set_ylabel("p(z | x)")
-    ax_lik.set_xlabel("cell   (brown: doors on the left and right wall; grey arrow: the true robot)")
-    ax_lik.set_xticks(np.arange(N_CELLS))
-    lik_bars = belief_bars(ax_lik, model.likelihood, color=palette.MEASUREMENT)
-    dynamic = [*bars, robot, status, setup, *lik_bars, *end_walls]
-    renderer = FigureRenderer(fig, dynamic)
-
-    def draw() -> None:
-        # The bars fill at most the lower 70 %, the two text blocks the rest; the top moves in steps
-        # of 0.25 (few full redraws), and the ticks stop at 1, as a probability does.
-        top = 0.25 * np.ceil(float(model.belief.max()) / 0.7 / 0.25)
-        if ax.get_ylim()[1] != top:
-            ax.set_yticks([t for t in MaxNLocator(6).tick_values(0, top) if t <= 1.0 + 1e-9])
-            ax.set_ylim(0, top)  # after the ticks, which may reach a rounding past the top and widen it
-        update_belief_bars(bars, model.belief)
-        colour = palette.PREDICTION if model.phase == "predicted" else palette.ESTIMATE
-        for bar in bars:
-            bar.set_color(colour)
-        robot.set_data([model.true_cell], [0.5])
-        for wall in end_walls:  # the corridor's ends: walls, or open on a loop
-            wall.set_visible(model.boundary == "wall")
-        update_belief_bars(lik_bars, model.likelihood)
-        for bar in lik_bars:
-            bar.set_alpha(0.35 if model.phase == "predicted" else 1.0)
-        status.set_text(_status(model))
-        setup.set_text(_setup(model))
-
-    return renderer, draw
 
 
 def hallway(seed: int = 0) -> Demo:
@@ -198,7 +121,7 @@ def hallway(seed: int = 0) -> Demo:
     Demo (an ipywidgets.VBox)
     """
     model = HallwayModel(seed)
-    renderer, draw = _picture(model)
+    view = hallway_view(model.doors)
     boundary = widgets.ToggleButtons(options=["wrap", "wall"], value=model.boundary, description="ends:")
     boundary.style.button_width = "60px"
     caption = (
@@ -212,8 +135,8 @@ def hallway(seed: int = 0) -> Demo:
         name="hallway",
         caption=caption,
         model=model,
-        renderer=renderer,
-        draw=draw,
+        renderer=FigureRenderer(view.fig, view.moving),
+        draw=partial(update_hallway, view, model),
         controls={
             "predict": (button("Predict", icon="arrow-right", tooltip="Move one cell right"), model.predict),
             "update": (button("Update", icon="eye", tooltip="Read the door sensor on both walls"), model.update),

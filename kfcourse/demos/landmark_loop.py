@@ -6,7 +6,7 @@ import ipywidgets as widgets
 import numpy as np
 
 from ..plots import palette
-from ..plots.loop import error_strips, loop_figure, loop_map, update_error_strips, update_loop_map
+from ..plots.loop import loop_view, update_loop_view
 from ..plots.style import FigureRenderer
 from ..sim.localization import landmark_loop as run_loop
 from ._base import Demo, button, slider
@@ -15,7 +15,8 @@ DROPOUT = (40, 70)  # steps k with t0 <= k < t1 without readings when dropout is
 FIRST_FRAME = 60  # the step shown first: on the top straight, two landmarks in view
 NOISE_RANGE = (-1.0, 1.0)  # log10 of the noise scales the sliders reach: 0.1x to 10x
 FILTERS = ("EKF", "UKF")  # the choices shown; the run takes them in lower case
-IMAGE_WIDTH = 680  # CSS px: the picture's largest width on the page (and it is rendered for that width)
+IMAGE_WIDTH = 520  # CSS px at most: the map and strips, 1.2 times as tall as wide, stay under 640 px tall
+COLUMN_WIDTH = 340  # CSS px: the controls and the readout beside the picture
 GATE = 4.0  # the filter rejects a reading more than 4 standard deviations from its prediction (chapter 8)
 
 
@@ -95,6 +96,7 @@ class LoopModel:
 
 
 def _readout(model: LoopModel) -> str:
+    """The lines beside the picture: what the filter did at the step shown, its error and its doubt."""
     run, k = model.run, model.frame
     used, rejected = int(np.count_nonzero(run.used[k])), int(np.count_nonzero(run.rejected[k]))
     if model.blind():
@@ -106,12 +108,12 @@ def _readout(model: LoopModel) -> str:
     before, after = model.areas()
     shrink = f" (×{after / before:#.2g})" if before > 0 else ""  # two digits however small: ×0.10, ×0.0022
     inside = "inside" if run.inside[k] else "<b>outside</b>"
-    kidnapped = " &nbsp; <b>kidnapped</b> at step " + str(model.kidnap) if model.kidnap is not None else ""
+    kidnapped = f"<br><b>kidnapped</b> at step {model.kidnap}" if model.kidnap is not None else ""
     return (
         f"<div style='font-size:13px;line-height:1.5'>step {k}, t = {run.t[k]:.1f} s: {sight}{kidnapped}<br>"
-        f"<span style='color:{palette.ESTIMATE}'>position error {run.error[k]:.3f} m</span>; "
-        f"1σ ellipse area <span style='color:{palette.PREDICTION}'>{before:.3g} m² before</span> → "
-        f"<span style='color:{palette.ESTIMATE}'>{after:.3g} m² after</span> the readings{shrink}; "
+        f"<span style='color:{palette.ESTIMATE}'>position error {run.error[k]:.3f} m</span><br>"
+        f"1σ ellipse area: <span style='color:{palette.PREDICTION}'>{before:.3g} m² before</span> → "
+        f"<span style='color:{palette.ESTIMATE}'>{after:.3g} m² after</span> the readings{shrink}<br>"
         f"truth {inside} the 3σ ellipse (so far at {model.share_inside():.0%} of the steps)</div>"
     )
 
@@ -155,6 +157,16 @@ def _controls(model: LoopModel, kidnap: widgets.Button) -> dict:
     }
 
 
+CAPTION = (
+    "<b>Landmark loop.</b> Purple squares: landmarks. Grey: true path and robot. Teal: the filter's estimate, "
+    "trail, 2σ ellipse (dashed purple: before this step's readings) and beams to the readings it uses; dashed "
+    "orange: readings it rejects (over 4σ off). Strips: x and y error (truth − estimate, m) in the filter's ±2σ "
+    "band; grey: blind steps; dotted: the kidnap. <i>process</i> / <i>measurement noise</i> scale the odometry's "
+    f"noise and R / the readings' noise and Q; <i>sensor dropout</i> blinds steps {DROPOUT[0]}–{DROPOUT[1] - 1}; "
+    "<i>Kidnap</i> moves the true robot half a lap on."
+)
+
+
 def landmark_loop(seed: int = 0) -> Demo:
     """Demo "landmark loop" (chapter 10): EKF (or UKF) localization round a map of landmarks.
 
@@ -163,49 +175,34 @@ def landmark_loop(seed: int = 0) -> Demo:
     toggle blinds the sensor for a fixed stretch of steps; another picks the
     filter; *Kidnap* carries the true robot half a lap on at the step shown.
     Every change reruns the whole lap once; moving in time only redraws.
+    The controls and the readout stand beside the picture, so that a laptop
+    shows them and the whole map at once.
 
     Returns
     -------
     Demo (an ipywidgets.VBox)
     """
     model = LoopModel(seed)
-    fig, ax_map, strip_axes = loop_figure(model.run)
-    view = loop_map(ax_map, model.run, model.frame)
-    strips = error_strips(strip_axes, model.run, model.frame)
-    renderer = FigureRenderer(fig, [*view.moving, *strips.moving])
-    readout = widgets.HTML()
+    view = loop_view(model)
+    readout = widgets.HTML(layout=widgets.Layout(width=f"{COLUMN_WIDTH}px"))
     readout.add_class("kf-readout")
     kidnap = button("Kidnap", icon="random", tooltip="Carry the true robot half a lap on at this step")
 
     def draw() -> None:
-        update_loop_map(view, model.run, model.frame)
-        update_error_strips(strips, model.run, model.frame)
+        update_loop_view(view, model)
         readout.value = _readout(model)
         kidnap.description = "Undo kidnap" if model.kidnap is not None else "Kidnap"
 
-    caption = (
-        "<b>Landmark loop.</b> Purple squares: landmarks. Grey: true path and robot. Teal: the filter's estimate, "
-        "trail, 2σ ellipse and beams to the readings it uses; dashed orange: readings it rejects (over 4σ off); "
-        "dashed purple: the 2σ ellipse before this step's readings. Strips: x and y error (truth − estimate) in the "
-        "filter's own ±2σ band, faint after the step shown; grey: the blind steps; dotted: the kidnap. "
-        "<i>process noise</i> / <i>measurement noise</i> scale the odometry noise and R<sub>t</sub> (trust in "
-        "odometry) / the reading noise and Q (trust in the sensor); <i>sensor dropout</i> "
-        f"blinds steps {DROPOUT[0]}–{DROPOUT[1] - 1}; <i>filter</i>: EKF or UKF on the same noise; <i>Kidnap</i> moves "
-        "the true robot half a lap on at this step."
-    )
     demo = Demo(
         name="landmark-loop",
-        caption=caption,
+        caption=CAPTION,
         model=model,
-        renderer=renderer,
+        renderer=FigureRenderer(view.fig, view.moving),
         draw=draw,
         frames=model.run.t.size,
         controls=_controls(model, kidnap),
-        layout=[readout, ["play", "frame"], ["motion", "sensor"], ["dropout", "kidnap"], "filter"],
+        beside=[["play", "frame"], "motion", "sensor", ["dropout", "kidnap"], "filter", readout],
         display_width=IMAGE_WIDTH,
     )
-    # The map with its strips is taller than wide: at the notebook's full width the controls would
-    # fall below the screen, so the picture stops growing at IMAGE_WIDTH.
-    demo.image.layout.width = "100%"
-    demo.image.layout.max_width = f"{IMAGE_WIDTH}px"
+    demo.controls["frame"].layout.width = f"{COLUMN_WIDTH - 90}px"  # beside Run (90 px), in the column's width
     return demo

@@ -6,8 +6,8 @@ from __future__ import annotations
 import ipywidgets as widgets
 import numpy as np
 
-from ..plots import palette
-from ..plots.style import FigureRenderer, new_figure
+from ..plots.style import FigureRenderer
+from ..plots.tracking import nees_view, update_nees_view
 from ..sim.target import filter_tracks, nees, nees_band, simulate_tracks
 from ._base import Demo, slider
 
@@ -16,6 +16,7 @@ N_STEPS = 60
 DOF = 4  # the state [px, py, vx, vy]
 LEVEL = 0.95
 Y_RANGE = (0.5, 500.0)  # log axis: from timid to badly over-confident
+DISPLAY_WIDTH = 848  # CSS px: a laptop's notebook width
 
 
 class NeesPanel:
@@ -74,6 +75,19 @@ class NeesPanel:
         return "honest: the ellipse matches the real errors"
 
 
+def _readout(model: NeesPanel) -> str:
+    """The three lines under the picture: the mistuning and the mean, the shares of steps below, inside and
+    above the band, and the verdict."""
+    low, high = model.band
+    below, inside, above = model.fractions()
+    return (
+        f"<div style='font-size:13px;line-height:1.5'>filter assumes {model.factor:.3g} × the true "
+        f"{model.which}: mean ε̄ = {model.avg_nees.mean():.2f} (band {low:.2f} to {high:.2f})<br>"
+        f"time steps below / inside / above the band: {below:.0%} / {inside:.0%} / {above:.0%}<br>"
+        f"<b>{model.verdict()}</b></div>"
+    )
+
+
 def nees_panel(seed: int = 0) -> Demo:
     """Demo "is the ellipse honest?" (chapter 6): the average NEES of many tracks
     over time against its 95 % band; a factor slider mistunes R or Q.
@@ -83,58 +97,35 @@ def nees_panel(seed: int = 0) -> Demo:
     Demo (an ipywidgets.VBox)
     """
     model = NeesPanel(seed)
-    t = model.batch.dt * np.arange(N_STEPS)
-    low, high = model.band
-    fig, ax = new_figure(8.0, 3.8)
-    ax.set_yscale("log")
-    ax.set_xlim(t[0], t[-1])
-    ax.set_ylim(*Y_RANGE)
-    ax.set_xlabel("time (s)")
-    ax.set_ylabel(r"average NEES  $\bar\epsilon$")
-    ax.axhspan(low, high, color=palette.TRUTH, alpha=0.35, lw=0, label=f"95 % band for {N_TRACKS} honest runs")
-    ax.axhline(DOF, color=palette.INK, lw=1.0, ls="--", label=f"{DOF} = state dimension")
-    (curve,) = ax.plot([], [], color=palette.ESTIMATE, lw=2.2, label="average NEES of the filter")
-    ax.legend(loc="lower left", bbox_to_anchor=(0.0, 1.0), ncols=3, fontsize=9)
+    view = nees_view(model.batch.dt * np.arange(N_STEPS), model.band, DOF, N_TRACKS, Y_RANGE)
     readout = widgets.HTML()  # text under the picture: no glyphs to render into the PNG
     readout.add_class("kf-readout")
-    renderer = FigureRenderer(fig, [curve])
 
     def draw() -> None:
-        curve.set_data(t, np.clip(model.avg_nees, *Y_RANGE))  # off-scale values sit on the edge
-        below, inside, above = model.fractions()
-        readout.value = (
-            f"<div style='font-size:13px;line-height:1.5'>filter assumes {model.factor:.3g} × the true "
-            f"{model.which}: mean ε̄ = {model.avg_nees.mean():.2f} (band {low:.2f} to {high:.2f}); "
-            f"time steps below / inside / above the band: {below:.0%} / {inside:.0%} / {above:.0%}<br>"
-            f"<b>{model.verdict()}</b></div>"
-        )
+        update_nees_view(view, model)
+        readout.value = _readout(model)
 
     caption = (
-        f"<b>Is the ellipse honest?</b> {N_TRACKS} targets that move exactly as the constant-velocity model says, "
-        f"each tracked by its own filter. Teal: the normalised estimation error squared "
-        f"ε = (x − μ)ᵀ Σ⁻¹ (x − μ), averaged over the tracks, at each time step (log scale). Grey band: where that "
-        f"average stays 95 % of the time if every Σ is honest; dashed: {DOF}, its expected value. "
-        "<i>mistune</i> picks the noise the filter gets wrong, <i>factor</i> how far: the filter assumes "
-        "factor × the true R (process) or Q (measurement). Above the band: over-confident; below: timid."
+        f"<b>Is the ellipse honest?</b> {N_TRACKS} targets moving exactly as the constant-velocity model says, each "
+        "tracked by its own filter. Teal: their average NEES ε = (x − μ)ᵀ Σ⁻¹ (x − μ) at each step (log scale); grey: "
+        f"where it stays 95 % of the time if every Σ is honest; dashed: {DOF}, its expected value. The filter assumes "
+        "<i>factor</i> × the true R (process) or Q (measurement), as <i>mistune</i> picks."
     )
-    return Demo(
+    tips = ["process noise R", "measurement noise Q"]
+    which = widgets.ToggleButtons(
+        options=["R", "Q"], value=model.which, description="mistune", tooltips=tips, style={"button_width": "60px"}
+    )
+    # Every factor reruns all the tracks: the slider reports where it is let go, not every value on the way.
+    factor = slider(widgets.FloatLogSlider, "factor", 1.0, -2, 2, 0.1, ".3g", continuous_update=False, base=10)
+    demo = Demo(
         name="nees",
         caption=caption,
         model=model,
-        renderer=renderer,
+        renderer=FigureRenderer(view.fig, view.moving),
         draw=draw,
-        controls={
-            "which": (
-                widgets.ToggleButtons(
-                    options=["R", "Q"],
-                    value=model.which,
-                    description="mistune",
-                    tooltips=["process noise R", "measurement noise Q"],
-                    style={"button_width": "60px"},
-                ),
-                model.set_which,
-            ),
-            "factor": (slider(widgets.FloatLogSlider, "factor", 1.0, -2, 2, 0.1, ".3g", base=10), model.set_factor),
-        },
+        controls={"which": (which, model.set_which), "factor": (factor, model.set_factor)},
         layout=[readout, ["which", "factor"]],
+        display_width=DISPLAY_WIDTH,
     )
+    demo.view = view  # the artists by name, for tests
+    return demo

@@ -2,22 +2,18 @@
 
 from __future__ import annotations
 
-from collections.abc import Callable
-
 import ipywidgets as widgets
 import numpy as np
 
 from ..filters.kalman_1d import kf_1d_gain, kf_1d_predict, kf_1d_update
-from ..plots import palette
-from ..plots.artists import gaussian_curve, update_gaussian_curve
-from ..plots.style import FigureRenderer, fixed_width_ticks, new_figure, nice_limit
+from ..plots.step_through import step_through_view, update_step_through
+from ..plots.style import FigureRenderer
 from ._base import Demo, button, slider
 
 MU0, VAR0 = 2.0, 0.40  # the worked example's prior at time step 0 (chapter 3): m, m^2
 U = 1.0  # m commanded each step
 WORKED_Z = (3.6, 4.7)  # the worked cycles' readings at time steps 1 and 2 (m)
 SENSOR_VAR = 0.1  # m^2: noise of the simulated readings after step 2 (the worked example's Q)
-HALF_WIDTH = 3.5  # m shown either side of the belief
 
 
 class StepThroughModel:
@@ -29,6 +25,27 @@ class StepThroughModel:
     with a note, before the first Predict and once this step's reading is in
     the belief: using it again would count the same evidence twice and make
     the filter overconfident.
+
+    Attributes
+    ----------
+    R, Q : float
+        Process and measurement noise variances (m²).
+    k : int
+        The time step the robot is at.
+    phase : str
+        What the last press did: ``"prior"`` (nothing yet), ``"predicted"`` or ``"updated"``.
+    before : (float, float)
+        Mean and variance before the last half-step.
+    predicted : (float, float) or None
+        The last prediction (mean, variance); None before the first Predict.
+    z, K : float or None
+        The reading and the gain of the last Update, if the last press was one.
+    mu, var : float
+        The belief now.
+    rows : list of tuple
+        One row per Update: step, predicted mean and variance, z, innovation, K, mean, variance.
+    note : str
+        Why the last Update was refused, or empty.
     """
 
     def __init__(self, seed: int, R: float = 0.2, Q: float = 0.1):
@@ -119,79 +136,6 @@ def _table(rows) -> str:
     return f"<table style='font-family:monospace;font-size:12px'><tr>{head}</tr>{body}</table>"
 
 
-def _status(m: StepThroughModel) -> str:
-    """The text at the top right: what the last button did (or why an Update was refused), and R and Q."""
-    if m.note:
-        text = m.note
-    elif m.phase == "prior":
-        text = f"step 0, prior  μ = {m.mu:.3f}, σ² = {m.var:.3f}\npress Predict"
-    elif m.phase == "predicted":
-        text = rf"Predict to step {m.k}: $\bar\mu$ = {m.mu:.3f}, $\bar\sigma^2$ = {m.var:.3f} (grew by R)"
-    else:
-        text = f"Update with step {m.k}'s reading z = {m.z:.2f}: K = {m.K:.3f}\nμ = {m.mu:.3f}, σ² = {m.var:.3f}"
-    return f"{text}\nR = {m.R:.3g}, Q = {m.Q:.3g}"
-
-
-def _picture(model: StepThroughModel) -> tuple[FigureRenderer, Callable[[], None]]:
-    """The four Gaussians of a step (the belief before it, the prediction, the measurement, the
-    updated belief) on an axis that follows the belief, with the status in the corner.
-
-    Returns
-    -------
-    (renderer, draw)
-        ``draw()`` shows the curves of the model's last step, faded in the legend where not shown.
-    """
-    fig, ax = new_figure(8.0, 3.4)
-    ax.set_xlabel("position x (m)")
-    ax.set_ylabel("density")
-    fixed_width_ticks(ax.yaxis)  # the layout is found once: keep the density labels one width
-    x = np.linspace(0.0, 10.0, 600)
-    before = gaussian_curve(ax, x, MU0, VAR0, palette.ESTIMATE, "belief before this step", fill=False)
-    before[0].set_linestyle("--")
-    before[0].set_linewidth(1.4)
-    pred = gaussian_curve(ax, x, MU0, VAR0, palette.PREDICTION, r"prediction  $\overline{bel}$")
-    meas = gaussian_curve(ax, x, MU0, VAR0, palette.MEASUREMENT, "measurement  N(z, Q)")
-    post = gaussian_curve(ax, x, MU0, VAR0, palette.ESTIMATE, "belief  bel")
-    zline = ax.axvline(MU0, color=palette.MEASUREMENT, lw=1, ls=":")
-    legend = ax.legend(loc="upper left", fontsize=9)
-    status = ax.text(0.99, 0.97, "", transform=ax.transAxes, ha="right", va="top", fontsize=10)
-    curves = (before, pred, meas, post)
-    dynamic = [a for c in curves for a in c if a is not None] + [zline, status, legend]
-    renderer = FigureRenderer(fig, dynamic)
-
-    def draw() -> None:
-        m = model
-        centre = round(m.mu)
-        lo, hi = centre - HALF_WIDTH, centre + HALF_WIDTH
-        grid = np.linspace(lo, hi, 600)
-        shown = {
-            "prior": (False, False, False, True),
-            "predicted": (True, True, False, False),
-            "updated": (False, True, True, True),
-        }[m.phase]
-        params = (m.before, m.predicted or m.before, (m.z or 0.0, m.Q), (m.mu, m.var))
-        peak = 0.0
-        for handle, label, visible in zip(legend.legend_handles, legend.get_texts(), shown, strict=True):
-            handle.set_alpha(1.0 if visible else 0.25)  # fade the entries of curves not shown now
-            label.set_alpha(1.0 if visible else 0.4)
-        for curve, visible, (mu, var) in zip(curves, shown, params, strict=True):
-            for artist in curve:
-                if artist is not None:
-                    artist.set_visible(visible)
-            curve[0].set_xdata(grid)
-            if visible:
-                peak = max(peak, float(update_gaussian_curve(curve, mu, max(var, 1e-9)).max()))
-        zline.set_visible(m.phase == "updated")
-        zline.set_xdata([m.z or 0.0] * 2)
-        top = nice_limit(1.1 * peak)
-        if ax.get_xlim() != (lo, hi) or ax.get_ylim()[1] != top:
-            ax.set_xlim(lo, hi)
-            ax.set_ylim(0, top)
-        status.set_text(_status(m))
-
-    return renderer, draw
-
-
 def step_through(seed: int = 0) -> Demo:
     """Demo "step through" (chapter 3): press Predict and Update to walk the
     scalar Kalman filter one half-step at a time, starting from the worked
@@ -204,11 +148,11 @@ def step_through(seed: int = 0) -> Demo:
     Demo (an ipywidgets.VBox)
     """
     model = StepThroughModel(seed)
-    renderer, draw_picture = _picture(model)
+    view = step_through_view()
     table = widgets.HTML()
 
     def draw() -> None:
-        draw_picture()
+        update_step_through(view, model)
         table.value = _table(model.rows)
 
     caption = (
@@ -223,7 +167,7 @@ def step_through(seed: int = 0) -> Demo:
         name="step-through",
         caption=caption,
         model=model,
-        renderer=renderer,
+        renderer=FigureRenderer(view.fig, view.moving),
         draw=draw,
         controls={
             "predict": (button("Predict", icon="arrow-right", tooltip="Move +1 m: shift and widen"), model.predict),

@@ -2,21 +2,22 @@
 
 from __future__ import annotations
 
+from functools import partial
+
 import ipywidgets as widgets
-import numpy as np
 
 from ..filters.gaussian import fuse
 from ..filters.kalman_1d import kf_1d_gain
-from ..plots import palette
-from ..plots.artists import gain_gauge, gaussian_curve, update_gain_gauge, update_gaussian_curve
-from ..plots.style import FigureRenderer, fixed_width_ticks, new_figure, nice_limit
+from ..plots.style import FigureRenderer
+from ..plots.trust import trust_view, update_trust
 from ._base import Demo, slider
-
-X_RANGE = (-6.0, 6.0)
 
 
 class TrustModel:
-    """Model: a prediction N(mu_pred, var_pred) and a measurement N(z, var_meas)."""
+    """Model: a prediction N(mu_pred, var_pred) and a measurement N(z, var_meas).
+
+    The sliders set the four numbers; :attr:`K` and :meth:`fused` follow from them.
+    """
 
     # Variances start on the log sliders' grid (10^k, k a multiple of 0.05), so the readouts match the model.
     def __init__(self, mu_pred: float = -1.0, var_pred: float = 1.0, z: float = 1.5, var_meas: float = 10**-0.5):
@@ -24,6 +25,7 @@ class TrustModel:
 
     @property
     def K(self) -> float:
+        """The Kalman gain: the share of the way from the prediction to the measurement."""
         return kf_1d_gain(self.var_pred, Q=self.var_meas)  # K = var_bar / (var_bar + var_Q), c = 1
 
     def set_mu_pred(self, mu_pred: float) -> None:
@@ -39,6 +41,7 @@ class TrustModel:
         self.var_meas = var_meas
 
     def fused(self) -> tuple[float, float]:
+        """The fused mean and variance (inverse-variance weighting, the same as the Kalman update)."""
         return fuse(self.mu_pred, self.var_pred, self.z, self.var_meas)
 
 
@@ -52,43 +55,7 @@ def trust_slider(seed: int = 0) -> Demo:
     Demo (an ipywidgets.VBox)
     """
     model = TrustModel()
-    fig, (ax, ax_k) = new_figure(8.0, 4.0, nrows=2, gridspec_kw={"height_ratios": [5, 1]})
-    x = np.linspace(*X_RANGE, 800)
-    ax.set_xlim(*X_RANGE)
-    ax.set_xlabel("position x")
-    ax.set_ylabel("density")
-    fixed_width_ticks(ax.yaxis)  # the layout is found once: keep the density labels one width
-    pred = gaussian_curve(ax, x, model.mu_pred, model.var_pred, palette.PREDICTION, "prediction")
-    meas = gaussian_curve(ax, x, model.z, model.var_meas, palette.MEASUREMENT, "measurement")
-    fused = gaussian_curve(ax, x, *model.fused(), palette.ESTIMATE, "fused")
-    fused[0].set_linewidth(3)
-    ax.legend(loc="upper left", fontsize=9)
-    ax.set_title("\u00a0\n\u00a0", fontsize=10)  # reserves room above the axes for the readout
-    info = ax.text(0.0, 1.02, "", transform=ax.transAxes, ha="left", va="bottom", fontsize=10)
-    gauge = gain_gauge(ax_k, model.K)
-    renderer = FigureRenderer(fig, [*pred, *meas, *fused, info, *gauge])
-
-    def draw() -> None:
-        mu_f, var_f = model.fused()
-        update_gaussian_curve(pred, model.mu_pred, model.var_pred)
-        update_gaussian_curve(meas, model.z, model.var_meas)
-        peak = float(update_gaussian_curve(fused, mu_f, var_f).max())
-        top = nice_limit(1.1 * peak)
-        if ax.get_ylim()[1] != top:
-            ax.set_ylim(0, top)
-        update_gain_gauge(gauge, model.K)
-        narrowest = min(model.var_pred, model.var_meas)
-        if var_f < narrowest:
-            verdict = f"σ² = {var_f:.3g} < min({model.var_pred:.3g}, {model.var_meas:.3g}): narrower than both inputs"
-        else:
-            verdict = (
-                f"σ² = {var_f:.3g} ≥ min({model.var_pred:.3g}, {model.var_meas:.3g}): not narrower than both inputs"
-            )
-        info.set_text(
-            f"K = {model.var_pred:.3g} / ({model.var_pred:.3g} + {model.var_meas:.3g}) = {model.K:.3f}"
-            f"      fused: μ = {mu_f:.3f}, σ² = {var_f:.3g}\n{verdict}"
-        )
-
+    view = trust_view()
     caption = (
         "<b>The gain as a trust slider.</b> Purple: the prediction; orange: the measurement; "
         "teal: the fused belief, always narrower than both. The bar shows K from 0 (trust the "
@@ -99,8 +66,8 @@ def trust_slider(seed: int = 0) -> Demo:
         name="trust-slider",
         caption=caption,
         model=model,
-        renderer=renderer,
-        draw=draw,
+        renderer=FigureRenderer(view.fig, view.moving),
+        draw=partial(update_trust, view, model),
         controls={
             "mu_pred": (slider(widgets.FloatSlider, "prediction mean", m.mu_pred, -4.0, 4.0, 0.1), m.set_mu_pred),
             "var_pred": (log_slider("prediction variance", m.var_pred), m.set_var_pred),

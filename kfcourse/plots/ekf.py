@@ -1,12 +1,27 @@
-"""Static figures of EKF runs (chapter 7): data in, figure out."""
+"""The figures of chapter 7: EKF runs and samples (data in, figure out), and the
+linearization demo's picture (:func:`linearization_view`, moved by
+:func:`update_linearization_view`)."""
 
 from __future__ import annotations
 
-import numpy as np
+from dataclasses import dataclass
 
+import numpy as np
+from matplotlib.lines import Line2D
+from matplotlib.text import Text
+
+from .. import _validate as v
 from . import palette
 from .artists import covariance_ellipse, landmarks
-from .style import new_figure
+from .curves import (
+    FunctionPanels,
+    axis_range,
+    function_panels,
+    show_input_density,
+    show_sampled_output,
+    show_sideways_gaussian,
+)
+from .style import new_figure, set_limits
 
 
 def share_outside(run) -> str:
@@ -117,3 +132,126 @@ def nonlinear_samples_chart(x, y, bins: int = 60):
     ax_y.set_xlabel("output y = f(x)")
     ax_y.legend(loc="upper right", fontsize=8)
     return fig
+
+
+# --------------------------------------------------------------------------- the linearization demo
+
+
+@dataclass(frozen=True)
+class LinearizationView:
+    """What :func:`linearization_view` drew; :func:`update_linearization_view` moves it."""
+
+    panels: FunctionPanels
+    output_limits: dict  #: function name -> (low, high) of the output axis
+    bins: int  #: bins of the sampled output's histogram
+    curve: Line2D  #: f
+    tangent: Line2D  #: f(m) + f'(m) (x - m), orange dashed
+    point: Line2D  #: (m, f(m))
+    input_density: Line2D  #: N(m, s²), purple
+    sampled: Line2D  #: histogram of the true output, grey
+    ekf: Line2D  #: the EKF's output Gaussian, teal
+    sampled_mean: Line2D  #: dotted grey
+    ekf_mean: Line2D  #: dotted teal
+    info: Text  #: the numbers
+
+    @property
+    def fig(self):
+        return self.panels.fig
+
+    @property
+    def moving(self) -> list:
+        """Every artist that changes with the model."""
+        return [
+            self.curve,
+            self.tangent,
+            self.point,
+            self.input_density,
+            self.sampled,
+            self.ekf,
+            self.sampled_mean,
+            self.ekf_mean,
+            self.info,
+        ]
+
+
+def linearization_view(
+    output_limits: dict, x_range=(-4.0, 4.0), bins: int = 60, width: float = 8.0, height: float = 4.8
+) -> LinearizationView:
+    """Chapter 7's demo picture: the curve f and its tangent at m over the input density,
+    the sampled output and the EKF's Gaussian beside them on the output axis, the numbers under those.
+
+    Nothing is shown until :func:`update_linearization_view`.  Introduced in chapter 7.
+
+    Parameters
+    ----------
+    output_limits : dict
+        For each function's name, the (low, high) of its output axis.
+    x_range : (float, float)
+        The input axis.
+    bins : int
+        Bins of the output histogram over the output axis.
+    width, height : float
+        Figure size (inches).
+
+    Returns
+    -------
+    LinearizationView
+    """
+    output_limits = {name: axis_range(pair, f"output_limits[{name!r}]") for name, pair in output_limits.items()}
+    bins = v.whole(bins, "bins", 1)
+    panels = function_panels(width, height, x_range, width_ratio=1.3, height_ratio=1.1)
+    ax_f, ax_out, ax_in = panels.ax_f, panels.ax_out, panels.ax_in
+    x = np.linspace(*x_range, 400)
+    (curve,) = ax_f.plot(x, x, color=palette.INK, lw=1.5, label="f(x)")
+    (tangent,) = ax_f.plot(x, x, color=palette.MEASUREMENT, lw=1.8, ls="--", label="tangent at m")
+    (point,) = ax_f.plot([0], [0], "o", color=palette.MEASUREMENT, ms=6)
+    ax_f.legend(loc="upper left", fontsize=9)
+    (density,) = ax_in.plot(x, x, color=palette.PREDICTION, lw=2)
+    (sampled,) = ax_out.plot([0, 1], [0, 1], color=palette.TRUTH, lw=1.5, label="sampled")
+    (ekf,) = ax_out.plot([0, 1], [0, 1], color=palette.ESTIMATE, lw=2, label="EKF")
+    across = {"transform": ax_out.get_yaxis_transform(), "lw": 1.2, "ls": ":"}  # x from edge to edge of the panel
+    (sampled_mean,) = ax_out.plot([0, 1], [0, 0], color=palette.TRUTH, **across)
+    (ekf_mean,) = ax_out.plot([0, 1], [0, 0], color=palette.ESTIMATE, **across)
+    ax_out.legend(loc="lower center", bbox_to_anchor=(0.5, 1.0), ncol=2, fontsize=8)  # above: no density reaches it
+    info = panels.ax_txt.text(
+        -0.1, 0.95, "", transform=panels.ax_txt.transAxes, ha="left", va="top", fontsize=8.5, family="monospace"
+    )
+    return LinearizationView(
+        panels, output_limits, bins, curve, tangent, point, density, sampled, ekf, sampled_mean, ekf_mean, info
+    )
+
+
+def update_linearization_view(view: LinearizationView, model) -> None:
+    """Show ``model`` (an input N(m, s²) through f, such as
+    :class:`kfcourse.sim.curves.GaussianThroughCurve`) on a picture made by :func:`linearization_view`.
+
+    ``model`` needs ``m``, ``s``, ``function`` (a key of the view's ``output_limits``),
+    ``f`` and ``df`` (f and f'), ``samples()`` (the true output) and ``ekf()`` (the
+    EKF's mean and variance).
+    """
+    panels = view.panels
+    lo, hi = view.output_limits[model.function]
+    set_limits(panels.ax_f, ylim=(lo, hi))
+    x = view.curve.get_xdata()
+    m, s = model.m, model.s
+    fm, slope = float(model.f(m)), float(model.df(m))
+    view.curve.set_ydata(model.f(x))
+    view.tangent.set_ydata(fm + slope * (x - m))  # f(m) + f'(m) (x - m)
+    view.point.set_data([m], [fm])
+    show_input_density(panels, view.input_density, m, s)
+    y = model.samples()
+    dens, out, top = show_sampled_output(panels, y, view.bins)
+    view.sampled.set_data(dens, out)
+    mean_y, var_y = float(y.mean()), float(y.var())
+    mean_e, var_e = model.ekf()
+    show_sideways_gaussian(view.ekf, mean_e, var_e, lo, hi, top)
+    view.sampled_mean.set_ydata([mean_y, mean_y])
+    view.ekf_mean.set_ydata([mean_e, mean_e])
+    view.info.set_text(
+        f"input:   m = {m:.2f}, s² = {s * s:.3g}\n"
+        f"slope:   f'(m) = {slope:.3f}\n\n"
+        f"sampled: mean {mean_y:8.3f}\n"
+        f"         var  {var_y:8.3g}\n"
+        f"EKF:     mean {mean_e:8.3f}\n"
+        f"         var  {var_e:8.3g}"
+    )

@@ -1,14 +1,23 @@
 """Pictures of EKF localization on a known map (chapter 8): readings and gates in the plane,
-one update's ellipses, and runs with and without the bearing wrap."""
+the data-association picture, one update's ellipses, and runs with and without the bearing wrap."""
 
 from __future__ import annotations
 
+from dataclasses import dataclass
+
 import numpy as np
+from matplotlib.collections import LineCollection, PathCollection
+from matplotlib.figure import Figure
+from matplotlib.patches import Ellipse, Polygon
+from matplotlib.text import Text
 
 from .. import _validate as v
 from . import palette
-from .artists import covariance_ellipse, landmarks, robot
+from .artists import covariance_ellipse, landmarks, robot, update_covariance_ellipse, update_robot
 from .style import new_figure
+
+ASSOCIATION_X, ASSOCIATION_Y = (-4.9, 5.6), (-4.6, 5.1)  # m: room for every gate up to 6 sigma on chapter 8's map
+ASSOCIATION_ROBOT = 0.2  # m, centre to nose: small enough that the 2-sigma ellipse after the update shows
 
 
 def reading_points(pose, z) -> np.ndarray:
@@ -72,6 +81,109 @@ def gate_outline(pose, z_hat, S, gate: float, n: int = 90) -> np.ndarray:
     boundary = z_hat + gate * (L @ np.vstack([np.cos(t), np.sin(t)])).T  # z = z_hat + gamma L [cos t, sin t]
     boundary[:, 0] = np.maximum(boundary[:, 0], 0.0)  # no negative ranges
     return reading_points(pose, boundary)
+
+
+@dataclass(frozen=True)
+class AssociationView:
+    """What :func:`association_view` drew; :func:`update_association` moves it.
+
+    The map, the true pose, the predicted pose and its 2-sigma ellipse are drawn once:
+    they are the scan's, and a new gate or an extra reading does not change them.
+    """
+
+    fig: Figure
+    gates: LineCollection  #: each landmark's gate, drawn like the readings (purple, dashed)
+    beams: LineCollection  #: from the predicted pose to each reading (faint orange)
+    links: LineCollection  #: from each accepted reading to its landmark
+    used: PathCollection  #: accepted readings (filled orange)
+    unused: PathCollection  #: rejected readings (hollow orange)
+    leg_label: Text  #: "leg", beside the leg's reading (hidden without one)
+    estimate: Polygon  #: the robot after the updates (teal)
+    truth: Polygon  #: the true pose (grey outline)
+    ellipse: Ellipse  #: the estimate's 2-sigma ellipse (teal)
+
+    @property
+    def moving(self) -> list:
+        """Every artist that changes with the gate or the scan, bottom to top."""
+        return [
+            self.gates,
+            self.beams,
+            self.links,
+            self.used,
+            self.unused,
+            self.leg_label,
+            self.estimate,
+            self.truth,  # never moves, but drawn over the estimate so that the estimate never hides it
+            self.ellipse,  # over both: it shows even when it is smaller than the triangles
+        ]
+
+
+def association_view(model) -> AssociationView:
+    """The chapter 8 map, the predicted pose, the gates, a scan's readings and the estimate after them.
+
+    Introduced in chapter 8.
+
+    Parameters
+    ----------
+    model : object
+        Anything with a scan ``scan`` (:class:`kfcourse.sim.AssociationScan`) and its
+        gated update ``result`` (:class:`kfcourse.sim.GatedUpdate`).
+
+    Returns
+    -------
+    AssociationView
+    """
+    scan = model.scan
+    fig, ax = new_figure(6.2, 5.4)
+    ax.set_xlim(*ASSOCIATION_X)
+    ax.set_ylim(*ASSOCIATION_Y)
+    ax.set_aspect("equal")
+    ax.set_xlabel("x (m)")
+    ax.set_ylabel("y (m)")
+    landmarks(ax, scan.landmarks, labels=True, zorder=2)
+    robot(ax, scan.mu_bar, color=palette.PREDICTION, size=ASSOCIATION_ROBOT, alpha=0.8, zorder=3)
+    covariance_ellipse(ax, scan.mu_bar, scan.Sig_bar[:2, :2], nsig=2.0, color=palette.PREDICTION, lw=1.5)
+
+    def lines(**style) -> LineCollection:
+        return ax.add_collection(LineCollection([], **style), autolim=False)
+
+    gates = lines(colors=palette.PREDICTION, lw=1.0, linestyles="--", alpha=0.8, zorder=1)
+    beams = lines(colors=palette.MEASUREMENT, lw=0.8, alpha=0.3, zorder=1)
+    links = lines(colors=palette.MEASUREMENT, lw=1.2, alpha=0.9, zorder=3)
+    used = ax.scatter([], [], s=40, color=palette.MEASUREMENT, zorder=4)
+    unused = ax.scatter([], [], s=60, facecolors="white", edgecolors=palette.MEASUREMENT, linewidths=2.0, zorder=4)
+    leg_label = ax.text(0, 0, "leg", color=palette.MEASUREMENT, fontsize=9, ha="left", va="bottom", zorder=5)
+    estimate = robot(ax, scan.mu_bar, color=palette.ESTIMATE, size=ASSOCIATION_ROBOT, alpha=0.5, zorder=5)
+    truth = robot(ax, scan.truth, color=palette.TRUTH, size=ASSOCIATION_ROBOT, facecolor="none", lw=2.0, zorder=6)
+    ellipse = covariance_ellipse(ax, scan.mu_bar, scan.Sig_bar[:2, :2], nsig=2.0, lw=2.0, zorder=7)
+    view = AssociationView(fig, gates, beams, links, used, unused, leg_label, estimate, truth, ellipse)
+    update_association(view, model)
+    return view
+
+
+def update_association(view: AssociationView, model) -> None:
+    """Show the model's gate, readings and estimate on a picture made by :func:`association_view`.
+
+    Each reading is drawn where it points from the predicted pose (:func:`reading_points`),
+    each gate with :func:`gate_outline`, so a reading's point lies inside a gate exactly
+    when the reading passes it.
+    """
+    scan, res = model.scan, model.result
+    gates = [gate_outline(scan.mu_bar, z_hat, S, res.gate) for z_hat, S in zip(scan.z_hat, scan.S, strict=True)]
+    view.gates.set_segments(gates)
+    points = reading_points(scan.mu_bar, scan.z)
+    accepted = res.accepted
+    view.beams.set_segments([np.array([scan.mu_bar[:2], p]) for p in points])
+    matched = [(p, scan.landmarks[j]) for p, j in zip(points, res.match, strict=True) if j >= 0]
+    view.links.set_segments([np.array(pair) for pair in matched])
+    view.used.set_offsets(points[accepted].reshape(-1, 2))
+    view.unused.set_offsets(points[~accepted].reshape(-1, 2))
+    leg = np.flatnonzero(np.asarray(scan.source) < 0)  # the reading that no landmark made, if any
+    view.leg_label.set_visible(leg.size > 0)
+    if leg.size:
+        view.leg_label.set_position(points[leg[0]] + [0.12, 0.05])
+    update_robot(view.estimate, res.mu)
+    update_covariance_ellipse(view.ellipse, res.mu, res.Sig[:2, :2])
 
 
 def update_ellipse_chart(mu_bar, Sig_bar, mu, Sig, landmark, nsig: float = 2.0):

@@ -8,9 +8,13 @@ teal beams from the estimate to the landmarks the filter used at that step, and
 dashed orange beams to those whose readings it rejected (outside its gate).
 
 Under the map, two strips show the position error along x and along y over the
-whole run, each with its band of plus or minus two standard deviations, read from
-the filter's own covariance: they are drawn by :mod:`kfcourse.plots.loop_strips`,
-whose functions this module offers too.
+whole run, in metres, each with its band of plus or minus two standard deviations,
+read from the filter's own covariance: they are drawn by
+:mod:`kfcourse.plots.loop_strips`, whose functions this module offers too.
+
+:func:`loop_view` draws the whole picture for a demo's model (anything with a run
+record ``run`` and a step ``frame``), :func:`update_loop_view` shows the model's run and
+step on it again; :func:`loop_chart` is the same picture once, for a notebook.
 
 Every function takes a run record with the fields of
 :class:`kfcourse.sim.LoopRun` (``t, dt, start, truth, landmarks, used,
@@ -25,6 +29,7 @@ from dataclasses import dataclass
 import numpy as np
 from matplotlib.collections import LineCollection
 from matplotlib.colors import to_rgba
+from matplotlib.figure import Figure
 from matplotlib.lines import Line2D
 from matplotlib.patches import Ellipse, Polygon
 from matplotlib.text import Text
@@ -54,14 +59,17 @@ from .style import new_figure
 __all__ = [
     "ErrorStrips",
     "LoopMap",
+    "LoopView",
     "error_strips",
     "loop_chart",
     "loop_figure",
     "loop_map",
+    "loop_view",
     "position_errors",
     "strip_limit",
     "update_error_strips",
     "update_loop_map",
+    "update_loop_view",
 ]
 
 MAP_MARGIN = 1.5  # m of room around the landmarks and the true path
@@ -217,11 +225,26 @@ def update_loop_map(view: LoopMap, run, k: int) -> None:
 
 # --------------------------------------------------------------------------- the whole picture
 
+STRIP_HEIGHT = 1.15  # inches per error strip
+LEGEND_HEIGHT = 0.45  # inches above the map for its legend (two rows)
 
-def loop_figure(run, width: float = 6.4, strip_height: float = 0.95, legend: bool = True):
+
+def loop_figure(run, width: float = 6.4, strip_height: float = STRIP_HEIGHT, legend: bool = True):
     """A figure with the map above and the two error strips under it.
 
-    Introduced in chapter 10.
+    The map shows metres at the same scale across and up; the figure is as tall as
+    that needs, plus the strips and the legend.  Introduced in chapter 10.
+
+    Parameters
+    ----------
+    run : LoopRun
+        Its landmarks and true path set the map's extent.
+    width : float
+        Inches.
+    strip_height : float
+        Inches per strip.
+    legend : bool
+        Leave room for the map's legend above it.
 
     Returns
     -------
@@ -233,13 +256,59 @@ def loop_figure(run, width: float = 6.4, strip_height: float = 0.95, legend: boo
     map_height = (width - 0.8) * span[1] / span[0] + 0.5  # metres square across the width, room for the x label
     fig, axes = new_figure(
         width,
-        map_height + 2 * strip_height + (0.45 if legend else 0.0),
+        map_height + 2 * strip_height + (LEGEND_HEIGHT if legend else 0.0),
         nrows=3,
         gridspec_kw={"height_ratios": [map_height, strip_height, strip_height]},
     )
     axes[2].sharex(axes[1])
     axes[1].tick_params(labelbottom=False)
     return fig, axes[0], (axes[1], axes[2])
+
+
+@dataclass(frozen=True)
+class LoopView:
+    """What :func:`loop_view` drew: the figure, its map and its error strips."""
+
+    fig: Figure
+    map: LoopMap
+    strips: ErrorStrips
+
+    @property
+    def moving(self) -> list:
+        """Every artist that changes with the step or the run: the map's, then the strips'."""
+        return [*self.map.moving, *self.strips.moving]
+
+
+def loop_view(model) -> LoopView:
+    """The map with the error strips under it, at the model's run and step.
+
+    Introduced in chapter 10.
+
+    Parameters
+    ----------
+    model : object
+        Anything with a run record ``run`` (fields of :class:`kfcourse.sim.LoopRun`)
+        and the step shown, ``frame``.  The map's extent comes from this run's map
+        and true path; later runs must drive the same loop.
+
+    Returns
+    -------
+    LoopView
+    """
+    fig, ax_map, strip_axes = loop_figure(model.run)
+    view = loop_map(ax_map, model.run, model.frame)
+    strips = error_strips(strip_axes, model.run, model.frame)
+    return LoopView(fig, view, strips)
+
+
+def update_loop_view(view: LoopView, model) -> None:
+    """Show the model's run at its step ``frame`` on a picture made by :func:`loop_view`.
+
+    A new step moves only the artists in :attr:`LoopView.moving`; a new run may also
+    change the strips' limits (:func:`strip_limit`), set only when they change.
+    """
+    update_loop_map(view.map, model.run, model.frame)
+    update_error_strips(view.strips, model.run, model.frame)
 
 
 def loop_chart(run, k: int | None = None):

@@ -1,7 +1,7 @@
 r"""The error strips of the landmark localization loop (chapter 10), drawn under its map.
 
 Two strips show the position error along x and along y over the
-whole run, each with the band of plus or minus two standard deviations of that
+whole run, in metres, each with the band of plus or minus two standard deviations of that
 coordinate, read from the filter's own covariance.  An honest filter keeps its
 error inside the band about 95 % of the time: the x error is Gaussian with
 variance :math:`\Sigma_{xx}` if the filter is right about itself.
@@ -21,15 +21,15 @@ import numpy as np
 from matplotlib.collections import PolyCollection
 from matplotlib.lines import Line2D
 from matplotlib.patches import Rectangle
-from matplotlib.text import Text
+from matplotlib.ticker import MaxNLocator
 
 from . import palette
-from .style import moving_tick_labels, tick_text
+from .style import fixed_width_ticks, set_limits
 
 NSIG = 2.0  # the map's ellipses and the strips' bands are 2-sigma
 AXES = ("x", "y")
-STRIP_TICKS = (-1.0, 0.0, 1.0)  # the strips' y ticks, as fractions of their limit
-TICK_WIDTH = 6  # characters a strip's tick label may take, as in "\u22120.005"
+HEADROOM = 1.15  # the strips' limit is at least this many times the largest error or bound of the run
+TICK_WIDTH = 5  # characters a strip's tick label may take, as in "-0.05" (limits from 0.01 m up)
 
 
 def run_step(run, k) -> int:
@@ -71,19 +71,24 @@ def position_errors(run) -> tuple[np.ndarray, np.ndarray]:
 
 
 def strip_limit(run) -> float:
-    """The strips' y limit (m): the first of 1, 2, 5, 10, 20, ... times a power of ten (0.01, 0.02, 0.05,
-    0.1, ...) at or above 1.15 times the largest error or bound of ``run``.
+    """The strips' y limit (m): they run from minus to plus this value.
 
-    Such a limit changes rarely as the run changes, so the tick labels keep their
-    values while a student drags a slider a little, and it reads as a round number.
+    The first of 1, 2, 5, 10, 20, ... times a power of ten (0.01, 0.02, 0.05,
+    0.1, ...) at or above 1.15 times the largest error or bound of ``run``, so the
+    strips hold the whole run.  Such a limit changes in coarse steps as the run
+    changes (most changes of a setting keep it) and reads as a round number.
     Introduced in chapter 10.
+
+    Parameters
+    ----------
+    run : LoopRun
+
+    Returns
+    -------
+    float
     """
-    return _limit(*position_errors(run))
-
-
-def _limit(error, bound) -> float:
-    """:func:`strip_limit` of the errors and bounds :func:`position_errors` gave."""
-    value = 1.15 * max(float(np.abs(error).max()), float(bound.max()), 1e-12)
+    error, bound = position_errors(run)
+    value = HEADROOM * max(float(np.abs(error).max()), float(bound.max()), 1e-12)
     decade = 10.0 ** np.floor(np.log10(value))
     return next(float(step * decade) for step in (1.0, 2.0, 5.0, 10.0) if step * decade >= value)
 
@@ -92,10 +97,9 @@ def _limit(error, bound) -> float:
 class ErrorStrips:
     """What :func:`error_strips` drew, one entry per axis (x, then y).
 
-    The strips plot in units of their limit, :func:`strip_limit`: their axes
-    always run from -1 to 1, so their ticks and grid never move, and the tick
-    labels are moving text that says what -1, 0 and 1 stand for in metres.  A
-    new run changes that text, never the axes.
+    The strips plot the errors and bands in metres on real axes from
+    ``-strip_limit(run)`` to ``strip_limit(run)``; their ticks are matplotlib's,
+    at the limits and at zero.
     """
 
     axes: tuple
@@ -105,13 +109,12 @@ class ErrorStrips:
     cursors: tuple[Line2D, ...]  #: the step shown
     blind: tuple[Rectangle, ...]  #: the steps without readings (hidden without dropout)
     kidnap: tuple[Line2D, ...]  #: the kidnap step (hidden without one)
-    labels: tuple[tuple[Text, ...], ...]  #: the y tick labels of each axis, at STRIP_TICKS
 
     @property
     def moving(self) -> list:
         """Every artist that changes with the step or the run, bottom to top."""
         per_axis = zip(self.blind, self.bands, self.kidnap, self.future, self.past, self.cursors, strict=True)
-        return [artist for group in per_axis for artist in group] + [text for axis in self.labels for text in axis]
+        return [artist for group in per_axis for artist in group]
 
 
 def _band_verts(t, bound) -> np.ndarray:
@@ -139,22 +142,24 @@ def error_strips(axes, run, k: int | None = None) -> ErrorStrips:
     """
     k = run_step(run, k)
     t = np.asarray(run.t, float)
-    parts: dict[str, list] = {name: [] for name in ("past", "future", "bands", "cursors", "blind", "kidnap", "labels")}
+    parts: dict[str, list] = {name: [] for name in ("past", "future", "bands", "cursors", "blind", "kidnap")}
     for ax, name in zip(axes, AXES, strict=True):
         ax.set_xlim(t[0], t[-1])
-        ax.set_ylim(-1.0, 1.0)  # in units of the strips' limit
         ax.axhline(0.0, color=palette.INK, lw=0.8, alpha=0.5)
         ax.set_ylabel(f"{name} error (m)")
-        labels = moving_tick_labels(ax, STRIP_TICKS, TICK_WIDTH)
-        blind = Rectangle((t[0], -1e3), 0.0, 2e3, color=palette.TRUTH, alpha=0.25, lw=0, visible=False)
+        ax.yaxis.set_major_locator(MaxNLocator(nbins=2, steps=[1, 2, 5, 10]))  # at -limit, 0 and +limit
+        fixed_width_ticks(ax.yaxis, TICK_WIDTH)  # the layout is found once: labels keep their width
+        # The blind stretch and the vertical lines span the strip's height whatever its limits (x in s, y in axes).
+        blind = Rectangle((t[0], 0.0), 0.0, 1.0, color=palette.TRUTH, alpha=0.25, lw=0, visible=False)
+        blind.set_transform(ax.get_xaxis_transform())
         ax.add_patch(blind)
         band = PolyCollection([], facecolors=palette.ESTIMATE, alpha=0.18, lw=0)
         ax.add_collection(band, autolim=False)
-        (kidnap,) = ax.plot([t[0], t[0]], [-1e3, 1e3], color=palette.INK, lw=1.2, ls=":", visible=False)
+        kidnap = ax.axvline(t[0], color=palette.INK, lw=1.2, ls=":", visible=False)
         (future,) = ax.plot([], [], color=palette.ESTIMATE, lw=1.2, alpha=0.35)
         (past,) = ax.plot([], [], color=palette.ESTIMATE, lw=1.8)
-        (cursor,) = ax.plot([t[0], t[0]], [-1e3, 1e3], color=palette.INK, lw=1.0, alpha=0.6)
-        for key, artist in zip(parts, (past, future, band, cursor, blind, kidnap, labels), strict=True):
+        cursor = ax.axvline(t[0], color=palette.INK, lw=1.0, alpha=0.6)
+        for key, artist in zip(parts, (past, future, band, cursor, blind, kidnap), strict=True):
             parts[key].append(artist)
     axes[-1].set_xlabel("time (s)")
     strips = ErrorStrips(tuple(axes), **{key: tuple(value) for key, value in parts.items()})
@@ -165,22 +170,21 @@ def error_strips(axes, run, k: int | None = None) -> ErrorStrips:
 def update_error_strips(strips: ErrorStrips, run, k: int) -> None:
     """Show ``run`` with the cursor at step ``k`` on strips made by :func:`error_strips`.
 
-    Only artists in :attr:`ErrorStrips.moving` change: a renderer that keeps the
-    static background need not redraw it, whatever the run.
+    The y limits are set only when :func:`strip_limit` changes, that is only for some
+    new runs, never for a new step: a renderer then redraws the background (the axes
+    and their ticks) only when it did change.
     """
     k = run_step(run, k)
     t = np.asarray(run.t, float)
     error, bound = position_errors(run)
-    top = _limit(error, bound)
-    error, bound = error / top, bound / top  # in units of the limit
+    top = strip_limit(run)
     k0 = kidnap_step(run)
-    for i in range(len(strips.axes)):
+    for i, ax in enumerate(strips.axes):
+        set_limits(ax, ylim=(-top, top))
         strips.past[i].set_data(t[: k + 1], error[: k + 1, i])
         strips.future[i].set_data(t[k:], error[k:, i])
         strips.bands[i].set_verts([_band_verts(t, bound[:, i])])
         strips.cursors[i].set_xdata([t[k], t[k]])
-        for label, y in zip(strips.labels[i], STRIP_TICKS, strict=True):
-            label.set_text(tick_text(y * top))
         blind = strips.blind[i]
         blind.set_visible(run.dropout is not None)
         if run.dropout is not None:

@@ -19,9 +19,7 @@ from matplotlib.artist import Artist
 from matplotlib.axes import Axes
 from matplotlib.backends.backend_agg import FigureCanvasAgg
 from matplotlib.figure import Figure
-from matplotlib.text import Text
 from matplotlib.ticker import FuncFormatter
-from matplotlib.transforms import ScaledTranslation
 from PIL import Image
 
 from . import palette
@@ -83,6 +81,23 @@ def nice_limit(value: float) -> float:
     return float(2.0 ** np.ceil(np.log2(max(value, 1e-12))))
 
 
+def set_limits(ax: Axes, xlim=None, ylim=None) -> bool:
+    """Set the limits of ``ax`` that differ from the ones it has; returns whether any did.
+
+    Setting a limit marks the figure stale, and so the background for a full redraw
+    (:class:`FigureRenderer`), even when the value is the same: a picture updated at
+    every slider step sets only the limits that changed.
+    """
+    changed = False
+    if xlim is not None and tuple(ax.get_xlim()) != tuple(map(float, xlim)):
+        ax.set_xlim(*xlim)
+        changed = True
+    if ylim is not None and tuple(ax.get_ylim()) != tuple(map(float, ylim)):
+        ax.set_ylim(*ylim)
+        changed = True
+    return changed
+
+
 FIGURE_SPACE = "\u2007"  # a space as wide as a digit
 
 
@@ -102,42 +117,7 @@ def fixed_width_ticks(axis, width: int = 6) -> None:
     width : int
         Characters each label is padded to (labels up to 4 significant digits).
     """
-    axis.set_major_formatter(FuncFormatter(lambda value, _: f"{value:.4g}".rjust(width, FIGURE_SPACE)))
-
-
-def moving_tick_labels(ax: Axes, ticks, width: int = 6) -> tuple[Text, ...]:
-    """Put the y ticks of ``ax`` at ``ticks`` and return their labels as texts to redraw with the moving artists.
-
-    For an axis whose ticks stay at the same heights while the values they stand for
-    change: the caller later changes the limits and the tick values together, in
-    proportion.  The tick marks and grid lines then stay where the static background
-    has them, and a new set of values costs only the texts, not a redraw of the
-    background.  The axis's own labels become blanks ``width`` digits wide, which hold
-    their room in the layout (found once).  Introduced in chapter 7.
-
-    Parameters
-    ----------
-    ax : matplotlib Axes
-    ticks : sequence of float
-        The ticks, in the current y limits.
-    width : int
-        Characters kept for each label.
-
-    Returns
-    -------
-    tuple of Text
-        One per tick, in its font, at its height as a fraction of the axes (so it stays
-        there whatever the limits), with no text yet: the caller sets the values.
-    """
-    ax.set_yticks(ticks)
-    ax.yaxis.set_major_formatter(FuncFormatter(lambda *_: FIGURE_SPACE * width))
-    tick = ax.yaxis.get_major_ticks()[0]
-    _, va, ha = ax.get_yaxis_text1_transform(0.0)  # how the axis aligns its labels
-    pad = tick.get_tick_padding() + tick.get_pad()  # points from the spine to a label
-    transform = ax.transAxes + ScaledTranslation(-pad / 72, 0.0, ax.figure.dpi_scale_trans)
-    style = {"fontproperties": tick.label1.get_fontproperties(), "color": tick.label1.get_color()}
-    lo, hi = ax.get_ylim()
-    return tuple(ax.text(0.0, (y - lo) / (hi - lo), "", transform=transform, va=va, ha=ha, **style) for y in ticks)
+    axis.set_major_formatter(FuncFormatter(lambda value, _: tick_text(value).rjust(width, FIGURE_SPACE)))
 
 
 def tick_text(value: float) -> str:

@@ -1,13 +1,30 @@
-"""Static figures of chapter 9: the unscented transform against the samples, and the UKF beside the EKF."""
+"""The figures of chapter 9: the unscented transform against the samples, the UKF beside
+the EKF (data in, figure out), and the sigma-points demo's picture (:func:`sigma_points_view`,
+moved by :func:`update_sigma_points_view`)."""
 
 from __future__ import annotations
 
+from dataclasses import dataclass
+
 import numpy as np
+from matplotlib.collections import LineCollection, PathCollection
+from matplotlib.lines import Line2D
+from matplotlib.patches import Polygon
+from matplotlib.text import Text
 
 from .. import _validate as v
+from ..filters.gaussian import gaussian_pdf
 from . import palette
 from .artists import landmarks
-from .style import new_figure
+from .curves import (
+    FunctionPanels,
+    axis_range,
+    function_panels,
+    show_input_density,
+    show_sampled_output,
+    show_sideways_gaussian,
+)
+from .style import new_figure, set_limits
 
 
 def _gaussian(grid, mean: float, var: float) -> np.ndarray:
@@ -123,3 +140,187 @@ def filter_comparison_chart(ekf, ukf):
     ax_e.set_ylim(bottom=0.0)
     ax_e.legend(loc="upper left", fontsize=8)
     return fig
+
+
+# --------------------------------------------------------------------------- the sigma-points demo
+
+ON_OUTPUT = 0.03  # where the sigma points' images sit across the output panel (a fraction of its width)
+
+
+@dataclass(frozen=True)
+class SigmaPointsView:
+    """What :func:`sigma_points_view` drew; :func:`update_sigma_points_view` moves it."""
+
+    panels: FunctionPanels
+    output_limits: dict  #: function name -> (low, high) of the output axis
+    bins: int  #: bins of the sampled output's histogram
+    curve: Line2D  #: f
+    tangent: Line2D  #: the EKF's tangent at m, orange dashed
+    guides: LineCollection  #: dotted paths of the sigma points: up to the curve, across to the output axis
+    on_curve: PathCollection  #: the sigma points on the curve
+    input_density: Line2D  #: N(m, s²), purple
+    on_input: PathCollection  #: the sigma points on the input density
+    sampled: Polygon  #: histogram of the true output, grey
+    ukf: Line2D  #: the UKF's output Gaussian, teal
+    ekf: Line2D  #: the EKF's output Gaussian, orange dashed
+    on_output: PathCollection  #: the sigma points' images on the output axis
+    info: Text  #: the numbers
+
+    @property
+    def fig(self):
+        return self.panels.fig
+
+    @property
+    def moving(self) -> list:
+        """Every artist that changes with the model, bottom to top."""
+        return [
+            self.curve,
+            self.tangent,
+            self.guides,
+            self.on_curve,
+            self.input_density,
+            self.on_input,
+            self.sampled,
+            self.ukf,
+            self.ekf,
+            self.on_output,
+            self.info,
+        ]
+
+
+def _sigma_dots(ax, colour: str, **kwargs) -> PathCollection:
+    """Three dots, one per sigma point (placed, sized and filled by the update)."""
+    return ax.scatter([0, 0, 0], [0, 0, 0], s=40, color=colour, edgecolor=colour, lw=1.5, zorder=3, **kwargs)
+
+
+def sigma_points_readout(chi, w, moments) -> str:
+    """The numbers panel: the sigma points and their weights, left to right, then each answer's mean and variance.
+
+    Parameters
+    ----------
+    chi, w : array_like, shape (3,)
+        The sigma points in the order :func:`kfcourse.sigma_points` makes them (m, m + spread,
+        m - spread) and their weights.
+    moments : list of (name, mean, variance)
+    """
+    order = [2, 0, 1]  # shown left to right
+    return (
+        f"{'sigma points':12}"
+        + "".join(f"{chi[i]:6.2f}" for i in order)
+        + f"\n{'weights':12}"
+        + "".join(f"{w[i]:6.2f}" for i in order)
+        + f"\n\n{'':12}mean{'':7}var\n"
+        + "\n".join(f"{name:7}{mean:9.3f} {var:9.4f}" for name, mean, var in moments)
+    )
+
+
+def sigma_points_view(
+    output_limits: dict, x_range=(-5.0, 5.0), bins: int = 60, width: float = 8.4, height: float = 4.9
+) -> SigmaPointsView:
+    """Chapter 9's demo picture: the curve f with three sigma points climbing it from the input
+    density, the output densities (sampled, UKF, EKF) beside it, and the numbers under those.
+
+    Nothing is shown until :func:`update_sigma_points_view`.  Introduced in chapter 9.
+
+    Parameters
+    ----------
+    output_limits : dict
+        For each function's name, the (low, high) of its output axis.
+    x_range : (float, float)
+        The input axis; the sigma points must stay on it.
+    bins : int
+        Bins of the output histogram over the output axis.
+    width, height : float
+        Figure size (inches).
+
+    Returns
+    -------
+    SigmaPointsView
+    """
+    output_limits = {name: axis_range(pair, f"output_limits[{name!r}]") for name, pair in output_limits.items()}
+    bins = v.whole(bins, "bins", 1)
+    panels = function_panels(width, height, x_range, width_ratio=1.4, height_ratio=1.3)
+    ax_f, ax_out, ax_in = panels.ax_f, panels.ax_out, panels.ax_in
+    x = np.linspace(*x_range, 500)
+    (curve,) = ax_f.plot(x, x, color=palette.INK, lw=1.5, label="f(x)")
+    (tangent,) = ax_f.plot(x, x, color=palette.MEASUREMENT, lw=1.6, ls="--", label="EKF: tangent at m")
+    guides = LineCollection([], colors=palette.PREDICTION, lw=0.9, linestyles=":")
+    ax_f.add_collection(guides)
+    on_curve = _sigma_dots(ax_f, palette.PREDICTION)
+    ax_f.legend(loc="upper center", fontsize=9)  # the middle top: empty above all three curves
+    (density,) = ax_in.plot(x, x, color=palette.PREDICTION, lw=2)
+    on_input = _sigma_dots(ax_in, palette.PREDICTION)
+    sampled = Polygon([[0, 0], [1, 1], [0, 1]], closed=True, facecolor=palette.TRUTH, alpha=0.45, lw=0, label="sampled")
+    ax_out.add_patch(sampled)
+    (ukf,) = ax_out.plot([0, 1], [0, 1], color=palette.ESTIMATE, lw=2.2, label="UKF")
+    (ekf,) = ax_out.plot([0, 1], [0, 1], color=palette.MEASUREMENT, lw=1.8, ls="--", label="EKF")
+    on_output = _sigma_dots(ax_out, palette.ESTIMATE, transform=ax_out.get_yaxis_transform())  # x: panel fraction
+    # Above the panel, where no output density can reach it.
+    ax_out.legend(
+        loc="lower center", bbox_to_anchor=(0.5, 1.0), ncol=3, fontsize=8, frameon=False, handlelength=1.4,
+        columnspacing=0.8, handletextpad=0.4,
+    )  # fmt: skip
+    # The readout: row names and numbers in one monospace grid (only x² has the row "exact").
+    text_style = {"ha": "left", "va": "top", "fontsize": 8.5, "family": "monospace"}
+    info = panels.ax_txt.text(-0.12, 1.0, "", transform=panels.ax_txt.transAxes, **text_style)
+    return SigmaPointsView(
+        panels,
+        output_limits,
+        bins,
+        curve,
+        tangent,
+        guides,
+        on_curve,
+        density,
+        on_input,
+        sampled,
+        ukf,
+        ekf,
+        on_output,
+        info,
+    )
+
+
+def update_sigma_points_view(view: SigmaPointsView, model) -> None:
+    """Show ``model`` on a picture made by :func:`sigma_points_view`.
+
+    ``model`` needs what :func:`kfcourse.plots.ekf.update_linearization_view` reads (``m``,
+    ``s``, ``function``, ``f``, ``df``, ``samples()``, ``ekf()``), and ``sigma_points()``
+    (the three points and their weights), ``ukf()`` (the UKF's mean and variance) and
+    ``exact()`` (the exact mean and variance, or None where unknown).
+    """
+    panels = view.panels
+    lo, hi = view.output_limits[model.function]
+    set_limits(panels.ax_f, ylim=(lo, hi))
+    x = view.curve.get_xdata()
+    m, s, f = model.m, model.s, model.f
+    fm, slope = float(f(m)), float(model.df(m))
+    view.curve.set_ydata(f(x))
+    view.tangent.set_ydata(fm + slope * (x - m))  # f(m) + f'(m) (x - m)
+    show_input_density(panels, view.input_density, m, s)
+    chi, w = model.sigma_points()
+    Y = f(chi)  # the sigma points through the true f
+    view.on_input.set_offsets(np.column_stack([chi, gaussian_pdf(chi, m, s * s)]))
+    view.on_curve.set_offsets(np.column_stack([chi, Y]))
+    view.on_output.set_offsets(np.column_stack([np.full(3, ON_OUTPUT), Y]))
+    sizes = 30.0 + 90.0 * np.abs(w)  # dot area grows with the weight
+    for dots, colour in (
+        (view.on_input, palette.PREDICTION),
+        (view.on_curve, palette.PREDICTION),
+        (view.on_output, palette.ESTIMATE),
+    ):
+        dots.set_sizes(sizes)
+        dots.set_facecolors([colour if wi > 0 else "white" for wi in w])  # a weight-0 point: an empty ring
+    x_end = panels.ax_f.get_xlim()[1]
+    view.guides.set_segments([[(c, lo), (c, y), (x_end, y)] for c, y in zip(chi, Y, strict=True)])
+    y = model.samples()
+    dens, out, top = show_sampled_output(panels, y, view.bins)
+    view.sampled.set_xy(np.column_stack([dens, out]))
+    mean_u, var_u = model.ukf()
+    mean_e, var_e = model.ekf()
+    show_sideways_gaussian(view.ukf, mean_u, var_u, lo, hi, top)
+    show_sideways_gaussian(view.ekf, mean_e, var_e, lo, hi, top)
+    moments = [("sampled", float(y.mean()), float(y.var())), ("UKF", mean_u, var_u), ("EKF", mean_e, var_e)]
+    if model.exact() is not None:
+        moments.append(("exact", *model.exact()))
+    view.info.set_text(sigma_points_readout(chi, w, moments))

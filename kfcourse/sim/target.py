@@ -130,15 +130,6 @@ def simulate_target(seed: int = 0, sensor_std: float = SENSOR_STD) -> TargetRun:
     )
 
 
-def _start_at_rest(z0, Q):
-    """The NEES filters' first guess: the first reading, standing still, vague about velocity."""
-    mu0 = np.concatenate([z0, np.zeros(2)])
-    Sig0 = np.zeros((4, 4))
-    Sig0[:2, :2] = Q  # as sure of the position as of one reading
-    Sig0[2:, 2:] = START_SPEED_STD**2 * np.eye(2)  # the spread the targets' velocities are drawn from
-    return mu0, Sig0
-
-
 def filter_target(run: TargetRun, R, Q) -> TargetEstimates:
     r"""Track ``run`` with a constant-velocity Kalman filter that assumes noise ``R``, ``Q``.
 
@@ -261,9 +252,11 @@ def filter_tracks(batch: TrackBatch, R, Q) -> tuple[np.ndarray, np.ndarray]:
     F, H = constant_velocity(batch.dt, dim=2)
     N, T, _ = batch.truth.shape
     mu_all, Sig_all = np.empty((N, T, 4)), np.empty((N, T, 4, 4))
-    starts = [_start_at_rest(z0, Q) for z0 in batch.z[:, 0]]  # each track's first guess
-    mu = np.array([mu0 for mu0, _ in starts])
-    Sig = np.array([Sig0 for _, Sig0 in starts])
+    # Each filter's first guess: its first reading, standing still, as vague about the velocity as the world is.
+    mu = np.hstack([batch.z[:, 0], np.zeros((N, 2))])  # (N, 4)
+    Sig = np.zeros((N, 4, 4))
+    Sig[:, :2, :2] = Q  # as sure of the position as of one reading
+    Sig[:, 2:, 2:] = START_SPEED_STD**2 * np.eye(2)  # the spread the targets' velocities are drawn from
     mu_all[:, 0], Sig_all[:, 0] = mu, Sig
     for k in range(1, T):
         mu, Sig = kf_step_batch(mu, Sig, None, batch.z[:, k], F, None, H, R, Q)

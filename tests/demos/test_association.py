@@ -9,8 +9,10 @@ from matplotlib.patches import Ellipse, Polygon
 from matplotlib.path import Path
 
 import kfcourse as kf
-from kfcourse.demos.association import LEG_OPTIONS, ROBOT_SIZE
+from kfcourse.demos.association import LEG_OPTIONS
 from kfcourse.plots import palette
+from kfcourse.plots.localization import ASSOCIATION_ROBOT as ROBOT_SIZE
+from tests.demos.layout import readout
 
 NO_LEG, LEG = LEG_OPTIONS
 
@@ -32,7 +34,7 @@ def test_first_frame_default_gate_every_reading_accepted():
     assert res.error_bar == pytest.approx(0.39, abs=0.005)
     assert res.error == pytest.approx(0.07, abs=0.005)
     assert estimate_drawn(demo) == pytest.approx(res.mu[:2])
-    assert "nan" not in demo.children[2].value.lower()
+    assert "nan" not in readout(demo).lower()
 
 
 def test_prompt_1_the_leg_is_rejected_at_the_default_gate():
@@ -47,7 +49,7 @@ def test_prompt_1_the_leg_is_rejected_at_the_default_gate():
     assert res.match[-1] == -1
     assert res.mu == pytest.approx(before)
     assert res.error == pytest.approx(0.07, abs=0.005)
-    assert "rejected" in demo.children[2].value
+    assert "rejected" in readout(demo)
     leg_point = kf.plots.reading_points(demo.model.scan.mu_bar, demo.model.scan.z[-1])
     hollow = demo.renderer.dynamic[4]  # rejected readings: hollow orange circles
     assert np.asarray(hollow.get_offsets()) == pytest.approx(leg_point)
@@ -91,7 +93,7 @@ def test_prompt_4_at_two_sigma_one_true_reading_is_just_outside():
     assert list(res.match) == [0, -1, 2, 3]
     assert res.distances[1, 1] == pytest.approx(2.01, abs=0.005)
     assert 1 - demo.model.kept() == pytest.approx(0.135, abs=0.001)
-    assert "14 %" in demo.children[2].value
+    assert "14 %" in readout(demo)
 
 
 def test_gates_drawn_around_every_landmark_and_they_grow_with_the_slider():
@@ -113,8 +115,8 @@ def test_readout_and_picture_finite_at_the_extremes(leg, gate):
     demo = kf.demos.data_association(seed=0)
     demo.controls["leg"].value = leg
     demo.controls["gate"].value = gate
-    readout = demo.children[2].value.lower()
-    assert "nan" not in readout and "inf" not in readout
+    text = readout(demo).lower()
+    assert "nan" not in text and "inf" not in text
     assert np.isfinite(demo.model.result.mu).all() and np.isfinite(demo.model.result.Sig).all()
     for path in demo.renderer.dynamic[0].get_paths():  # the gates, however wide
         assert np.isfinite(path.vertices).all()
@@ -125,9 +127,9 @@ def test_question_3_the_readout_either_side_of_the_leg():
     demo = kf.demos.data_association(seed=0)
     demo.controls["leg"].value = LEG
     demo.controls["gate"].value = 4.7
-    assert demo.model.result.match[-1] == -1 and "0.0016 %" in demo.children[2].value
+    assert demo.model.result.match[-1] == -1 and "0.0016 %" in readout(demo)
     demo.controls["gate"].value = 4.8
-    assert demo.model.result.match[-1] == 3 and "0.00099 %" in demo.children[2].value
+    assert demo.model.result.match[-1] == 3 and "0.00099 %" in readout(demo)
 
 
 def test_the_estimate_ellipse_is_drawn_over_the_robots_and_every_gate_fits_the_picture():
@@ -145,8 +147,12 @@ def test_the_estimate_ellipse_is_drawn_over_the_robots_and_every_gate_fits_the_p
         assert x0 < px0 and px1 < x1 and y0 < py0 and py1 < y1
 
 
-def test_controls_row_wraps_when_the_notebook_is_narrow():
+def test_the_leg_label_stands_at_the_leg_reading_only_with_the_leg():
     demo = kf.demos.data_association(seed=0)
-    row = demo.children[3]
-    assert demo.controls["gate"] in row.children and demo.controls["leg"] in row.children
-    assert row.layout.flex_flow == "row wrap"
+    label = demo.renderer.dynamic[5]
+    assert label.get_text() == "leg" and not label.get_visible()
+    demo.controls["leg"].value = LEG
+    point = kf.plots.reading_points(demo.model.scan.mu_bar, demo.model.scan.z[-1])[0]
+    assert label.get_visible() and np.linalg.norm(np.asarray(label.get_position()) - point) < 0.2
+    demo.controls["leg"].value = NO_LEG
+    assert not label.get_visible()

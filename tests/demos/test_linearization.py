@@ -6,7 +6,7 @@ import numpy as np
 import pytest
 
 import kfcourse as kf
-from kfcourse.demos.linearization import FUNCTIONS
+from kfcourse.sim.curves import FUNCTIONS
 
 RANGE = "range √(x² + 1)"
 
@@ -53,8 +53,9 @@ def test_x_squared_at_zero_the_ekf_says_variance_zero():
     assert var_e == 0.0 and mean_e == 0.0
     assert var_y == pytest.approx(2.0, rel=0.1)
     assert mean_y == pytest.approx(1.0, abs=0.05)
-    drawn = np.asarray(demo.renderer.dynamic[5].get_xydata(), float)  # the EKF's spike, drawn finite
-    assert np.isfinite(drawn).all()
+    drawn = np.asarray(demo.view.ekf.get_xydata(), float)  # the EKF's "spike": a short arrow at 0, drawn finite
+    assert np.isfinite(drawn).all() and demo.view.ekf.get_marker() == ">"
+    assert np.all(drawn[:, 1] == 0.0)
 
 
 def test_sin_at_its_peak_the_ekf_is_far_too_sure():

@@ -40,9 +40,21 @@ def test_controls_mistune_the_named_noise_and_keep_the_world():
     assert m.batch.truth is truth
     mu, Sig = filter_tracks(m.batch, R_used, Q_used)  # the curve is the average NEES of that filter
     np.testing.assert_allclose(m.avg_nees, nees(m.batch.truth, mu, Sig).mean(axis=0))
-    curve = demo.renderer.dynamic[0]
+    curve = demo.view.curve
     np.testing.assert_allclose(curve.get_ydata(), np.clip(m.avg_nees, 0.5, 500.0))
+    np.testing.assert_allclose(curve.get_xdata(), m.batch.dt * np.arange(N_STEPS))
     assert f"{m.avg_nees.mean():.2f}" in demo.children[2].value
+
+
+def test_factor_reruns_where_it_is_let_go_and_never_redraws_the_axes():
+    """Each factor reruns every track: the slider reports the value it is let go at (and each key press),
+    not every value on the way; the log axis and the band stay, only the curve moves."""
+    demo = make()
+    assert demo.controls["factor"].continuous_update is False
+    draws = demo.renderer.full_draws
+    for which, factor in (("R", 0.01), ("R", 100.0), ("Q", 0.3)):
+        set_mistune(demo, which, factor)
+    assert demo.renderer.full_draws == draws
 
 
 def test_band_is_the_chi_square_band_for_the_number_of_tracks():

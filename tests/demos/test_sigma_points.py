@@ -14,8 +14,9 @@ from matplotlib.patches import Polygon
 from matplotlib.text import Text
 
 import kfcourse as kf
-from kfcourse.demos.linearization import FUNCTIONS, output_limits
-from kfcourse.demos.sigma_points import ARROW, DENSITY_CAP, X_RANGE, Y_TICKS
+from kfcourse.demos.sigma_points import OUTPUT_LIMITS, X_RANGE
+from kfcourse.plots.curves import ARROW, CUT
+from kfcourse.sim.curves import FUNCTIONS
 
 SQUARE, SINE, RANGE = "x²", "sin x", "range √(x² + 1)"
 TRUE_F = {SQUARE: lambda x: x * x, SINE: np.sin, RANGE: lambda x: np.sqrt(x * x + 1.0)}  # written out again here
@@ -32,8 +33,7 @@ def demo_at(function: str = SQUARE, m: float = 2.0, s: float = 1.0, lam: float =
 
 def readout(demo) -> dict[str, tuple[float, float]]:
     """The (mean, var) rows of the readout the picture shows ("exact" only where the picture has that row)."""
-    (info,) = demo.renderer.fig.axes[3].texts
-    rows = [line.split() for line in info.get_text().split("\n")]
+    rows = [line.split() for line in demo.view.info.get_text().split("\n")]
     return {
         row[0]: (float(row[1]), float(row[2])) for row in rows if row and row[0] in ("sampled", "UKF", "EKF", "exact")
     }
@@ -89,25 +89,28 @@ def test_exact_row_only_for_x_squared():
 
 
 def test_output_legend_sits_above_the_panel_and_densities_stay_inside_it():
-    """At sin x, m = 1.5, s = 1.5 the legend is clear of the EKF's tall Gaussian (at y = 1) and the UKF's very
-    narrow one is cut inside the panel; a variance of 0
-    (x², m = 0) is a short arrow, not a line across the panel."""
+    """At sin x, m = 1.5, s = 1.5 the legend is clear of the EKF's tall Gaussian (at y = 1); at x², m = 0.05,
+    s = 1 both Gaussians are far narrower than the samples and run off the panel's edge, which cuts them; a
+    variance of 0 (x², m = 0) is a short arrow, not a line across the panel."""
     demo = demo_at(SINE, 1.5, 1.5)
     fig = demo.renderer.fig
-    demo.renderer.png()
-    ax_out = fig.axes[1]
-    renderer = fig.canvas.get_renderer()
+    ax_out = demo.view.panels.ax_out
+    renderer = fig.canvas.get_renderer()  # the demo has drawn the picture: extents need no new draw
     legend_box = ax_out.get_legend().get_window_extent(renderer)
     assert legend_box.y0 >= ax_out.get_window_extent(renderer).y1 - 1.0  # above the panel
-    ukf_line = demo.renderer.dynamic[7]
-    dens, _ = ukf_line.get_data()
-    assert np.max(dens) == pytest.approx(DENSITY_CAP) and DENSITY_CAP < ax_out.get_xlim()[1]
-    demo = demo_at(SQUARE, 0.0, 1.0)
-    for line in demo.renderer.dynamic[7:9]:  # the UKF's and the EKF's: both variance 0 here
+    demo = demo_at(SQUARE, 0.05, 1.0)
+    top = demo.view.panels.ax_out.get_xlim()[1]
+    assert demo.view.sampled.get_xy()[:, 0].max() <= top  # the histogram fits
+    for line in (demo.view.ukf, demo.view.ekf):
         dens, _ = line.get_data()
-        assert np.max(dens) == pytest.approx(ARROW) and line.get_marker() == ">"
+        assert np.max(dens) == pytest.approx(CUT * top) and CUT > 1.0 and line.get_clip_on()
+    demo.controls["m"].value = 0.0
+    top = demo.view.panels.ax_out.get_xlim()[1]
+    for line in (demo.view.ukf, demo.view.ekf):  # both variance 0 here
+        dens, _ = line.get_data()
+        assert np.max(dens) == pytest.approx(ARROW * top) and line.get_marker() == ">"
     demo.controls["m"].value = 1.0
-    for line in demo.renderer.dynamic[7:9]:
+    for line in (demo.view.ukf, demo.view.ekf):
         assert line.get_marker() == "None"
 
 
@@ -123,11 +126,13 @@ def test_ukf_readout_is_unscented_1d_at_the_slider_values(function, m, s, lam):
     assert demo.model.ukf() == pytest.approx(expected, rel=1e-12, abs=1e-12)
     shown = readout(demo)["UKF"]
     assert shown == pytest.approx(expected, abs=1e-3 + 1e-4)  # printed to 3 and 4 decimals
-    # The teal curve is N(mean, var) of that readout, drawn relative to the sampled peak and cut at DENSITY_CAP:
+    # The teal curve is the density of N(mean, var) of that readout, cut off the panel's edge if taller:
     # its peak (the middle of the cut, if cut) sits at the mean.
-    dens, grid = demo.renderer.dynamic[7].get_data()
+    dens, grid = demo.view.ukf.get_data()
     if expected[1] > 1e-9:
         assert np.mean(grid[dens == dens.max()]) == pytest.approx(expected[0], abs=2 * (grid[1] - grid[0]))
+        uncut = dens < dens.max()
+        assert dens[uncut] == pytest.approx(kf.gaussian_pdf(grid[uncut], *expected))  # a real density
 
 
 @pytest.mark.parametrize(("m", "s"), [(2.0, 1.0), (0.0, 1.0), (-1.5, 0.5), (1.0, 1.5), (0.5, 0.05)])
@@ -165,22 +170,25 @@ def test_every_extreme_is_finite(function):
         artists = [a for a in demo.renderer.dynamic if not isinstance(a, Text)]
         for artist in artists:
             assert np.isfinite(drawn(artist)).all(), (function, m, s, lam, artist)
-        texts = [a.get_text().lower() for a in demo.renderer.dynamic if isinstance(a, Text)]  # readout, tick labels
+        texts = [a.get_text().lower() for a in demo.renderer.dynamic if isinstance(a, Text)]  # the readout
         assert len(artists) + len(texts) == len(demo.renderer.dynamic) and "sampled" in texts[0]
         assert not any("nan" in text or "inf" in text for text in texts)
         rows = readout(demo)
         assert all(np.isfinite(v).all() and v[1] >= 0 for v in rows.values())
         chi, _ = demo.model.sigma_points()
-        lo, hi = demo.renderer.fig.axes[0].get_xlim()
+        lo, hi = demo.view.panels.ax_f.get_xlim()
         assert lo <= chi.min() and chi.max() <= hi  # every sigma point stays in the picture
 
 
 def test_every_function_has_output_limits_that_hold_its_curve():
-    for name, (f, _df, _) in FUNCTIONS.items():
-        lo, hi = output_limits(Y_TICKS[name])
+    assert set(OUTPUT_LIMITS) == set(FUNCTIONS)
+    demo = kf.demos.sigma_points(seed=0)
+    for name, (f, _df) in FUNCTIONS.items():
+        demo.controls["function"].value = name
+        lo, hi = demo.view.panels.ax_f.get_ylim()
+        assert (lo, hi) == OUTPUT_LIMITS[name]  # the output axis the picture shows
         y = f(np.linspace(*X_RANGE, 200))
         assert lo <= y.min() and y.max() <= hi
-    assert set(Y_TICKS) == set(FUNCTIONS)
 
 
 def test_bad_lam_is_refused_by_the_model():

@@ -55,7 +55,18 @@ def test_sliders_retune_the_filter_not_the_world():
 def test_picture_shows_the_frame_estimate_ellipse_and_velocities():
     demo = make()
     m = demo.model
-    pings, trail, ahead, truth_vel, truth_dot, est_vel, est_dot, ring = demo.renderer.dynamic
+    v = demo.view
+    pings, trail, ahead, truth_vel, truth_dot, est_vel, est_dot, ring = (
+        v.readings,
+        v.trail,
+        v.ahead,
+        v.truth_velocity,
+        v.truth_dot,
+        v.velocity,
+        v.dot,
+        v.ring,
+    )
+    assert set(demo.renderer.dynamic) == {pings, trail, ahead, truth_vel, truth_dot, est_vel, est_dot, ring}
     for k in (0, 37, 120):
         demo.controls["frame"].value = k
         assert m.frame == k
@@ -75,6 +86,23 @@ def test_picture_shows_the_frame_estimate_ellipse_and_velocities():
         assert f"estimated ({v_est[0]:+.2f}, {v_est[1]:+.2f})" in text
         assert f"true ({v_true[0]:+.2f}, {v_true[1]:+.2f})" in text
         assert m.regime() in text and f"K = {m.gain():.3f}" in text
+
+
+def test_time_and_retuning_never_redraw_the_map():
+    """The map's limits are the true path's: a step, Run or a retune moves only the filter's artists."""
+    demo = make()
+    ax = demo.renderer.fig.axes[0]
+    limits = ax.get_xlim(), ax.get_ylim()
+    draws = demo.renderer.full_draws
+    for k in (0, 1, demo.controls["frame"].max, 50):
+        demo.controls["frame"].value = k
+    slider_to(demo, "Q", 1e4)
+    slider_to(demo, "R", 1e-3)
+    assert demo.step(3)  # what Run does
+    assert demo.renderer.full_draws == draws
+    assert (ax.get_xlim(), ax.get_ylim()) == limits
+    lo, hi = demo.model.run.truth[:, :2].min(axis=0), demo.model.run.truth[:, :2].max(axis=0)
+    assert limits[0][0] < lo[0] and hi[0] < limits[0][1] and limits[1][0] < lo[1] and hi[1] < limits[1][1]
 
 
 def test_first_frame_is_useful_and_seeded():
@@ -180,7 +208,7 @@ def try_3_huge_sigma_a_is_jittery_and_the_velocity_line_stays_in_view(demo):
     assert 160.0 < np.abs(v_err).max() < 200.0 and 50.0 < v_err.std() < 70.0  # "up to about ±180", "near 60"
     ax = demo.renderer.fig.axes[0]
     (x0, x1), (y0, y1) = ax.get_xlim(), ax.get_ylim()
-    est_vel = demo.renderer.dynamic[5]
+    est_vel = demo.view.velocity
     for k in range(demo.controls["frame"].max + 1):
         demo.controls["frame"].value = k
         start, (x, y) = est_vel.get_xydata()

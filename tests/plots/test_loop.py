@@ -1,5 +1,6 @@
-"""The landmark-loop pictures of chapter 10: what the strips plot is the stated definition,
-the static chart draws the step asked for, and a step outside the run is refused."""
+"""The landmark-loop pictures of chapter 10: what the strips plot is the stated definition, in
+metres on real axes, the static chart draws the step asked for, a step outside the run is
+refused, and the demo's picture redraws its background only when the strips' limits change."""
 
 from __future__ import annotations
 
@@ -8,6 +9,11 @@ import pytest
 
 import kfcourse as kf
 from kfcourse.plots.loop import error_strips, loop_figure, loop_map, strip_limit
+
+
+def tick_values(ax) -> list[float]:
+    """The y tick labels of an axis, read as numbers."""
+    return [float(label.get_text().strip("\u2007").replace("\u2212", "-")) for label in ax.get_yticklabels()]
 
 
 @pytest.fixture(scope="module")
@@ -29,12 +35,13 @@ def test_chart_draws_the_step_asked_for(run):
     trail = next(line for line in ax_map.get_lines() if len(line.get_xydata()) == 56)
     np.testing.assert_allclose(trail.get_xydata()[-1], run.mu[55, :2])  # the estimate's trail ends at step 55
     assert "sensor blind" in [t.get_text() for t in ax_map.texts]
-    for ax in (ax_x, ax_y):  # the strips hold the whole run: every error and bound within their limit
-        assert ax.get_ylim() == (-1.0, 1.0) and ax.texts[-1].get_text() == f"{strip_limit(run):g}"
+    top = strip_limit(run)
+    for ax in (ax_x, ax_y):  # the strips hold the whole run: every error and bound within their limits
+        assert ax.get_ylim() == (-top, top) and tick_values(ax) == [-top, 0.0, top]
         errors = [line.get_ydata() for line in ax.get_lines() if len(line.get_ydata()) > 2]  # past and future
-        assert sum(map(len, errors)) == run.t.size + 1 and np.abs(np.concatenate(errors)).max() <= 1.0
+        assert sum(map(len, errors)) == run.t.size + 1 and np.abs(np.concatenate(errors)).max() <= top
         (band,) = (c for c in ax.collections if len(c.get_paths()))
-        assert np.abs(band.get_paths()[0].vertices[:, 1]).max() <= 1.0
+        assert np.abs(band.get_paths()[0].vertices[:, 1]).max() <= top
     assert fig._repr_png_()[:4] == b"\x89PNG"
 
 
@@ -64,7 +71,7 @@ def test_the_ellipses_are_drawn_over_the_estimated_robot(run):
     assert view.robot.get_facecolor()[3] < 1.0  # a see-through fill
 
 
-def test_strips_plot_in_units_of_their_limit_and_label_it(run):
+def test_strips_plot_metres_on_real_axes_with_a_round_limit(run):
     _, _, strip_axes = loop_figure(run)
     strips = error_strips(strip_axes, run, 100)
     error, bound = kf.plots.position_errors(run)
@@ -73,35 +80,56 @@ def test_strips_plot_in_units_of_their_limit_and_label_it(run):
     decade = 10.0 ** np.floor(np.log10(top))
     assert round(top / decade, 9) in (1.0, 2.0, 5.0) and top / 2.5 < 1.15 * max(np.abs(error).max(), bound.max())
     for i, ax in enumerate(strip_axes):
-        assert ax.get_ylim() == (-1.0, 1.0)
-        np.testing.assert_allclose(strips.past[i].get_xydata()[-1], [run.t[100], error[100, i] / top])
-        assert strips.bands[i].get_paths()[0].vertices[:, 1].max() == pytest.approx(bound[:, i].max() / top)
-        assert [label.get_text() for label in strips.labels[i]] == [f"\u2212{top:g}", "0", f"{top:g}"]
-        assert all(not label.get_text().strip("\u2007") for label in ax.get_yticklabels())  # the axis's own: blank
+        assert ax.get_ylim() == (-top, top)
+        assert tick_values(ax) == [-top, 0.0, top]  # matplotlib's own ticks, at the limits and at zero
+        np.testing.assert_allclose(strips.past[i].get_xydata()[-1], [run.t[100], error[100, i]])  # metres
+        assert strips.bands[i].get_paths()[0].vertices[:, 1].max() == pytest.approx(bound[:, i].max())
+        y = ax.transData.transform([[run.t[100], error[100, i]]])[0, 1]  # where the error is drawn, in pixels
+        y0, y1 = ax.transData.transform([[0.0, -top], [0.0, top]])[:, 1]
+        assert y == pytest.approx(y0 + (y1 - y0) * (error[100, i] + top) / (2 * top))  # at its height on the axis
 
 
-def test_a_new_run_changes_the_tick_labels_never_the_axes():
-    """The strips' limit follows the run through their labels only, so the demo's blitted picture,
-    which never redraws its background after a change of run, is still right."""
+def strip_state(demo):
+    """The strips' limits and the number of full draws so far."""
+    return [ax.get_ylim() for ax in demo.renderer.fig.axes[1:]], demo.renderer.full_draws
+
+
+def test_run_never_redraws_the_background():
+    """Moving in time changes no limit: every frame of Run is blitted over the background drawn once."""
     demo = kf.demos.landmark_loop(seed=0)
-    strips_axes = demo.renderer.fig.axes[1:]
+    demo.controls["dropout"].value = True  # a run whose strips are not the first ones
+    limits, draws = strip_state(demo)
+    demo.controls["frame"].value = 0
+    while demo.step():
+        assert strip_state(demo) == (limits, draws)
+
+
+def test_a_new_run_redraws_the_background_only_when_the_limits_change():
+    """A change of setting reruns the lap: the strips take the new run's limits, drawn in full once,
+    and a change that keeps the limits only blits; either way the picture is right."""
+    demo = kf.demos.landmark_loop(seed=0)
     changes = [
         lambda: demo.controls["kidnap"].click(),
         lambda: demo.controls["kidnap"].click(),
         lambda: setattr(demo.controls["dropout"], "value", True),
         lambda: setattr(demo.controls["sensor"], "value", 10.0),
+        lambda: setattr(demo.controls["sensor"], "value", 9.0),
         lambda: setattr(demo.controls["motion"], "value", 0.1),
         lambda: setattr(demo.controls["dropout"], "value", False),
+        lambda: setattr(demo.controls["filter"], "value", "UKF"),
     ]
-    tops = set()
+    tops, kept = set(), 0
     for change in changes:
+        before, draws = strip_state(demo)
         change()
-        tops.add(strip_limit(demo.model.run))
-        label = strips_axes[0].texts[0]  # the x strip's label at -1
-        assert label.get_text() == f"\u2212{strip_limit(demo.model.run):g}"
-        assert all(ax.get_ylim() == (-1.0, 1.0) for ax in strips_axes)
+        top = strip_limit(demo.model.run)
+        tops.add(top)
+        after, now = strip_state(demo)
+        assert after == [(-top, top)] * 2
+        assert now - draws == (after != before)  # one full draw if the limits changed, none if not
+        kept += after == before
         shown = np.asarray(demo.renderer.image(), dtype=float)
         demo.renderer.fig.stale = True
         full = np.asarray(demo.renderer.image(), dtype=float)
         assert (np.abs(shown - full).max(axis=2) > 40).sum() == 0
-    assert len(tops) >= 4  # the limit did change on the way
+    assert len(tops) >= 4 and kept >= 1  # the limits did change on the way, and some changes kept them
