@@ -20,7 +20,6 @@ from __future__ import annotations
 
 import asyncio
 import base64
-import io
 from collections.abc import Callable
 
 import ipywidgets as widgets
@@ -30,7 +29,6 @@ from ..plots.style import PIXEL_DENSITY, FigureRenderer
 FRAME_INTERVAL = 0.08  # s between frames while running: 12.5 pictures a second
 REST_AFTER = 0.3  # s without a change after which the light picture gives way to the crisp one
 FRAME_GAP = 0.02  # s the kernel always rests between frames, to hear Pause and slider moves
-ANIMATION_INTERVAL_MS = 120  # between the pictures of :meth:`Demo.animation`: a run in a few seconds
 DISPLAY_WIDTH = 950  # CSS px: about the width JupyterLab stretches a demo's picture to beside its side bar
 
 
@@ -111,6 +109,10 @@ class Demo(widgets.VBox):
         self._draw = draw
         self._task = None
         self._rest_timer = None
+        try:  # the kernel's event loop: the demo's pictures, its rest timer and its Run task live on it
+            self._loop = asyncio.get_running_loop()
+        except RuntimeError:  # a script or a test: every change is drawn at once, crisp
+            self._loop = None
         bound = dict(controls)
         if frames is not None:
             bound = {**self._player(frames), **bound}
@@ -149,16 +151,32 @@ class Demo(widgets.VBox):
         Without an event loop to wait on (a script, a test), the crisp picture follows at once.
         """
         self._draw()
-        try:
-            loop = asyncio.get_running_loop()
-        except RuntimeError:
+        if self._loop is None:
             self._show_crisp()
             return
         self._cancel_rest()
         with self.image.hold_sync():  # the format and the bytes reach the page in one message
             self.image.format = "webp"
             self.image.value = self.renderer.light()
-        self._rest_timer = loop.call_later(REST_AFTER, self._show_crisp)
+        self._rest_timer = self._loop.call_later(REST_AFTER, self._show_crisp)
+
+    def _on_demo_loop(self, action: Callable, *args) -> None:
+        """Call ``action(*args)`` on the demo's event loop.
+
+        JupyterLab may deliver widget messages to a kernel subshell, which handles them in a
+        thread of its own.  A change that arrives there is handed to the demo's loop, so that a
+        picture, the rest timer and the Run task never run at once on two threads.
+        """
+        try:
+            here = asyncio.get_running_loop()
+        except RuntimeError:
+            here = None
+        if self._loop is None or self._loop.is_closed():  # made outside a loop: it lives on the first one
+            self._loop = here
+        if self._loop is None or here is self._loop:
+            action(*args)
+        else:
+            self._loop.call_soon_threadsafe(action, *args)
 
     def _cancel_rest(self) -> None:
         if self._rest_timer is not None:
@@ -179,63 +197,23 @@ class Demo(widgets.VBox):
         data["image/png"] = base64.b64encode(self.renderer.png()).decode("ascii")
         return data, {"image/png": {"width": self.display_width}}
 
-    def animation(self, pictures: int = 40, width: int = DISPLAY_WIDTH) -> bytes:
-        """The whole run, first frame to last, as an animated WebP that loops.
-
-        For pages without a kernel: what pressing Run shows.  The demo is left on the
-        frame it was on.
-
-        Parameters
-        ----------
-        pictures : int
-            At most this many frames, evenly spaced over the run (>= 2).
-        width : int
-            Pixels wide.
-
-        Returns
-        -------
-        bytes
-        """
-        if "frame" not in self.controls:
-            raise ValueError("animation needs a demo with frames (Run/Pause)")
-        if pictures < 2:
-            raise ValueError(f"pictures must be at least 2, got {pictures!r}")
-        frame = self.controls["frame"]
-        start, shown = frame.value, []
-        stride = max(1, -(-(frame.max - frame.min) // (pictures - 1)))  # ceil
-        ks = [*range(frame.min, frame.max, stride), frame.max]
-        self.renderer.set_pixel_width(width)
-        try:
-            for k in ks:
-                self._set_frame(k)
-                self._draw()
-                shown.append(self.renderer.image())
-        finally:
-            self.renderer.set_pixel_width(PIXEL_DENSITY * self.display_width)
-            self._set_frame(start)
-            self.refresh()
-        buf = io.BytesIO()
-        duration = [ANIMATION_INTERVAL_MS] * (len(shown) - 1) + [1500]  # rest on the last frame before looping
-        shown[0].save(buf, format="webp", save_all=True, append_images=shown[1:], duration=duration, loop=0, quality=80)
-        return buf.getvalue()
-
     def _bind(self, control: widgets.Widget, method: Callable | None) -> None:
         if method is None:
             return
         if isinstance(control, widgets.Button):
 
-            def on_click(_) -> None:
+            def clicked() -> None:
                 method()
                 self._moved()
 
-            control.on_click(on_click)
+            control.on_click(lambda _: self._on_demo_loop(clicked))
         else:
 
-            def on_change(change) -> None:
-                method(change["new"])
+            def changed(value) -> None:
+                method(value)
                 self._moved()
 
-            control.observe(on_change, "value")
+            control.observe(lambda change: self._on_demo_loop(changed, change["new"]), "value")
 
     def _row(self, row) -> widgets.Widget:
         items = row if isinstance(row, list | tuple) else [row]
@@ -254,7 +232,7 @@ class Demo(widgets.VBox):
         frame = widgets.IntSlider(
             value=self.model.frame, min=0, max=n_frames - 1, description="step", layout=widgets.Layout(width="340px")
         )
-        play.observe(self._on_play, "value")
+        play.observe(lambda change: self._on_demo_loop(self._on_play, change["new"]), "value")
         return {"play": (play, None), "frame": (frame, self._set_frame)}
 
     def _set_frame(self, k: int) -> None:
@@ -274,24 +252,22 @@ class Demo(widgets.VBox):
         frame.value = min(frame.value + frames, frame.max)
         return True
 
-    def _on_play(self, change) -> None:
+    def _on_play(self, running: bool) -> None:
         play = self.controls["play"]
-        play.description, play.icon = ("Pause", "pause") if change["new"] else ("Run", "play")
+        play.description, play.icon = ("Pause", "pause") if running else ("Run", "play")
         if self._task is not None:
             self._task.cancel()
             self._task = None
-        if not change["new"]:
+        if not running:
             self._show_crisp()  # paused, or at the last frame: the picture to study
             return
-        try:
-            loop = asyncio.get_running_loop()
-        except RuntimeError:  # no event loop (a plain script or test): use step() instead
+        if self._loop is None:  # no event loop (a plain script or test): use step() instead
             play.value = False
             return
         frame = self.controls["frame"]
         if frame.value >= frame.max:
             frame.value = frame.min  # Run at the end starts again
-        self._task = loop.create_task(self._run(loop))
+        self._task = self._loop.create_task(self._run(self._loop))
 
     async def _run(self, loop: asyncio.AbstractEventLoop) -> None:
         """Show one frame per FRAME_INTERVAL until paused or at the last frame."""
