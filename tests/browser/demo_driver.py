@@ -3,6 +3,11 @@ then ArrowRight presses, with the latency of each), every button, every choice a
 Run/Pause animation must change the picture, and after Pause the picture stops within one
 frame interval.  See ``kfcourse/demos/_base.py`` for the DOM contract.
 
+Every picture that arrives is weighed (its bytes and MIME type) and measured (its pixel
+width against the CSS width it is shown at).  While a control moves, a demo sends a light
+WebP; once the student stops, the crisp JPEG, with two pixels per CSS pixel.  The driver
+waits for that crisp picture after every action, and says so when it does not come.
+
 What goes wrong is written to the test's list of problems; notes and latency go to its report.
 """
 
@@ -18,11 +23,13 @@ CHANGE_TIMEOUT_MS = 10_000  # one control action -> new picture
 LATENCY_SAMPLES = 10  # ArrowRight presses per slider
 PLAY_MS = 1_500
 PAUSE_SLACK_MS = 250  # after Pause: one frame interval, plus the frame already on its way, plus transport
+CRISP = "image/jpeg"  # the picture at rest; anything else is a light one, sent while something moves
 
 # --------------------------------------------------------------------------- page-side helpers
 
-# Records every src change of the picture (and when the new picture is decoded), and the
-# timestamp of the last keydown in the page.
+# Records every src change of the picture: when, its bytes and MIME type (read from the blob
+# before the next picture revokes it), and once decoded, its pixel width and the CSS width it
+# is shown at; and the timestamps of the last keydown and click in the page.
 JS_WATCH_IMG = """(img) => {
     if (!window.__kfKeyWatch) {
         window.__kfKeyWatch = true;
@@ -36,9 +43,16 @@ JS_WATCH_IMG = """(img) => {
     new MutationObserver(records => {
         for (const r of records) {
             if (r.attributeName !== 'src') continue;
-            const entry = {t: performance.now(), decoded: null, key: window.__kfKeyT};
+            const entry = {t: performance.now(), decoded: null, key: window.__kfKeyT, click: window.__kfClickT,
+                           type: null, bytes: null, natural: null, shown: null};
             rec.changes.push(entry);
-            img.decode().then(() => { entry.decoded = performance.now(); }, () => { entry.decoded = -1; });
+            fetch(img.src).then(r => r.blob()).then(b => { entry.type = b.type; entry.bytes = b.size; },
+                                                    () => { entry.type = 'gone'; });
+            img.decode().then(() => {
+                entry.decoded = performance.now();
+                entry.natural = img.naturalWidth;
+                entry.shown = img.getBoundingClientRect().width;
+            }, () => { entry.decoded = -1; });
         }
     }).observe(img, {attributes: true, attributeFilter: ['src']});
 }"""
@@ -46,17 +60,22 @@ JS_WATCH_IMG = """(img) => {
 JS_IMG_READY = """(img) => /^(data|blob):/.test(img.getAttribute('src') || '')
     && img.complete && img.naturalWidth > 0"""
 
-# Resolves once the picture has not changed for `quiet` ms and the kernel is idle.
-JS_SETTLE = """async (img, [quiet, max]) => {
+# Resolves once the picture has not changed for `quiet` ms, the last one is the crisp picture
+# (weighed and decoded) and the kernel is idle.
+JS_SETTLE = """async (img, [quiet, max, crisp]) => {
     const kernel = () => {
         const s = window.jupyterapp.shell.currentWidget.sessionContext;
         return s && s.session && s.session.kernel ? s.session.kernel.status : 'none';
     };
     const start = performance.now();
+    const atRest = () => {
+        const last = img.__kf.changes[img.__kf.changes.length - 1];
+        return !last || (last.type === crisp && last.decoded !== null);
+    };
     let n = img.__kf.changes.length, since = performance.now();
     while (performance.now() - start < max) {
         await new Promise(r => setTimeout(r, 20));
-        if (img.__kf.changes.length !== n || kernel() !== 'idle') {
+        if (img.__kf.changes.length !== n || kernel() !== 'idle' || !atRest()) {
             n = img.__kf.changes.length; since = performance.now();
         } else if (performance.now() - since >= quiet) {
             return performance.now() - start;
@@ -83,6 +102,7 @@ class DemoDriver:
     """Drives one ``.kf-demo`` and watches its picture."""
 
     def __init__(self, page, demo, label: str, problems: list[str], report):
+        self.clicks: list[float] = []  # ms from a click on a button or choice to the new picture
         self.page = page
         self.report = report
         self.label = label
@@ -106,7 +126,22 @@ class DemoDriver:
             return False
 
     def settle(self, quiet_ms: int = 120, max_ms: int = 15_000) -> float:
-        return self.img.evaluate(JS_SETTLE, [quiet_ms, max_ms])
+        """Wait until the crisp picture is shown and nothing changes; ms waited (-1: it did not settle).
+
+        A picture at rest that is not crisp (fewer than two pixels per CSS pixel) is a problem.
+        """
+        waited = self.img.evaluate(JS_SETTLE, [quiet_ms, max_ms, CRISP])
+        last = self.last()
+        if last and last["natural"] and last["shown"] and last["natural"] < 2 * last["shown"] - 1:
+            self.problem(f"the picture at rest has {last['natural']} pixels for {last['shown']:.0f} CSS px: not crisp")
+        return waited
+
+    def last(self) -> dict | None:
+        return self.img.evaluate("(i) => i.__kf.changes[i.__kf.changes.length - 1] || null")
+
+    def pictures(self) -> list[dict]:
+        """Every picture that arrived so far: time, type, bytes, pixel and CSS width."""
+        return self.img.evaluate("(i) => i.__kf.changes")
 
     @staticmethod
     def key_of(el) -> str | None:
@@ -123,9 +158,9 @@ class DemoDriver:
         ok = self.wait_change(n0)
         if ok:
             self.settle()
-        entry = self.img.evaluate("(i) => i.__kf.changes[i.__kf.changes.length - 1] || null")
+        first = self.img.evaluate("(i, n) => i.__kf.changes[n] || null", n0) if ok else None
         state = slider.evaluate(JS_SLIDER_STATE)
-        return ok, {"entry": entry if ok else None, "state": state}
+        return ok, {"entry": first, "state": state}
 
     def drive_slider(self, slider, key: str) -> list[tuple[float, float | None]]:
         """End/Home (or Home/End), then ArrowRight presses; returns latency samples."""
@@ -171,8 +206,17 @@ class DemoDriver:
         n0 = self.changes()
         button.click()
         ok = self.wait_change(n0, timeout_ms)
+        self._time_click(n0, ok)
         self.settle()
         return ok
+
+    def _time_click(self, n0: int, ok: bool) -> None:
+        """The ms from the click to the first picture after it, if the action was a click."""
+        first = self.img.evaluate("(i, n) => i.__kf.changes[n] || null", n0) if ok else None
+        if first and first.get("click") is not None and first["t"] >= first["click"]:
+            previous = self.img.evaluate("(i, n) => n > 0 ? i.__kf.changes[n - 1].t : -1", n0)
+            if first["click"] > previous:  # the click belongs to this action
+                self.clicks.append(first["t"] - first["click"])
 
     def drive_buttons(self, buttons: list[tuple[str, object]]) -> None:
         for i, (key, button) in enumerate(buttons):
@@ -195,6 +239,7 @@ class DemoDriver:
         n0 = self.changes()
         action()
         ok = self.wait_change(n0)
+        self._time_click(n0, ok)
         self.settle()
         return ok
 

@@ -16,7 +16,7 @@ try:
 except ImportError:  # the `browser` fixture skips (fails on CI) with the reason
     PlaywrightTimeoutError = TimeoutError
 
-VIEWPORT = {"width": 1400, "height": 1400}
+VIEWPORT = {"width": 1280, "height": 800}  # a 13-inch laptop; the notebook opens beside the file browser
 RUN_ALL_TIMEOUT_MS = int(os.environ.get("KFCOURSE_RUN_ALL_TIMEOUT_S", "240")) * 1000
 KERNEL_IDLE_TIMEOUT_MS = 90_000
 WIDGETS_RENDER_TIMEOUT_MS = 30_000
@@ -100,8 +100,9 @@ def close_context(context, url: str) -> None:
 
 
 def open_notebook(page, url: str, name: str, timings: dict[str, float]) -> str:
-    """Open the notebook ``name`` with a fresh workspace, the left side bar collapsed, and wait
-    until its kernel is idle; returns the id of its panel.  Adds each phase's end to ``timings``."""
+    """Open the notebook ``name`` with a fresh workspace, the file browser open beside it (as a
+    student has it), and wait until its kernel is idle; returns the id of its panel.  Adds each
+    phase's end to ``timings``."""
     page.goto(f"{url}lab/tree/{urllib.parse.quote(name)}?reset")
     timings["goto"] = time.monotonic()
     page.wait_for_function("() => !!(window.jupyterapp && window.jupyterapp.shell.currentWidget)")
@@ -113,7 +114,7 @@ def open_notebook(page, url: str, name: str, timings: dict[str, float]) -> str:
         timeout=KERNEL_IDLE_TIMEOUT_MS,
     )
     timings["notebook"] = time.monotonic()
-    page.evaluate("() => window.jupyterapp.shell.collapseLeft()")
+    page.evaluate("() => window.jupyterapp.shell.activateById('filebrowser')")
     page.wait_for_function(JS_KERNEL_IDLE, timeout=KERNEL_IDLE_TIMEOUT_MS)
     timings["kernel idle"] = time.monotonic()
     return page.evaluate("() => window.jupyterapp.shell.currentWidget.id")

@@ -1,11 +1,17 @@
 """Every course notebook, run in JupyterLab in headless Chromium, with every demo driven.
 
-Per notebook: open it, wait for the kernel to be idle, Run All, then check that no cell
-wrote to stderr or raised, that every widget really rendered, and, for each ``.kf-demo``
-(see ``kfcourse/demos/_base.py`` for the DOM contract): a picture, a caption, every
-slider (End / Home / ArrowRight), every button and the Run/Pause animation change the
-picture, and after Pause the picture stops within one frame interval.  Slider latency
-(key press to new ``src``) is recorded, not asserted.
+Per notebook, in a 1280x800 window beside the file browser (a 13-inch laptop): open it,
+wait for the kernel to be idle, Run All, then check that no cell wrote to stderr or raised,
+that every widget really rendered, and, for each ``.kf-demo`` (see
+``kfcourse/demos/_base.py`` for the DOM contract):
+
+- a picture and a caption; the picture and all of its controls fit the notebook area at
+  once (at most ``LAYOUT_MAX_PX`` tall), and the picture is never shown larger than drawn;
+- every slider (End / Home / ArrowRight), every button and the Run/Pause animation change
+  the picture, and after Pause the picture stops within one frame interval;
+- each control answers with a new picture within ``CONTROL_P95_MS`` at the 95th percentile
+  (key press or click to new ``src``), the pictures sent while something moves weigh at most
+  ``LIGHT_MAX_BYTES`` (median), and after every action the crisp picture comes to rest.
 
 The steps that drive JupyterLab are in ``tests/browser/lab.py``, the ones that drive a
 demo's controls in ``tests/browser/demo_driver.py``; this module says what must hold.
@@ -18,7 +24,8 @@ import time
 
 import pytest
 
-from tests.browser.demo_driver import JS_IMG_READY, DemoDriver
+from tests.browser.conftest import latency_stats
+from tests.browser.demo_driver import CRISP, JS_IMG_READY, DemoDriver
 from tests.browser.lab import (
     RUN_ALL_TIMEOUT_MS,
     VIEWPORT,
@@ -37,6 +44,25 @@ from tests.browser.lab import (
 pytestmark = pytest.mark.browser
 
 Latency = dict[str, list[tuple[float, float | None]]]  # slider key -> (key to src, key to decoded) in ms
+
+LAYOUT_MAX_PX = 680  # the picture and its controls, caption aside: what a 1280x800 window leaves the notebook
+CONTROL_P95_MS = 250  # key press or click to the new picture, 95th percentile per demo
+LIGHT_MAX_BYTES = 60_000  # median weight of the pictures sent while a control moves or Run plays
+
+# The demo's picture and controls (every child but the caption): their height, the height of the
+# notebook area that shows them, and the picture's CSS width against its pixel width.
+JS_LAYOUT = """(d) => {
+    const parts = Array.from(d.children).filter(c => !c.classList.contains('kf-caption'));
+    const rects = parts.map(c => c.getBoundingClientRect()).filter(r => r.height > 0);
+    const img = d.querySelector('img.kf-figure');
+    const area = d.closest('.jp-WindowedPanel-outer');
+    return {
+        height: Math.max(...rects.map(r => r.bottom)) - Math.min(...rects.map(r => r.top)),
+        area: area ? area.clientHeight : null,
+        shown: img.getBoundingClientRect().width,
+        natural: img.naturalWidth,
+    };
+}"""
 
 
 # --------------------------------------------------------------------------- the notebook
@@ -185,13 +211,49 @@ def _record_latency(label: str, latency: Latency, report) -> None:
     print(f"\n[latency] {label}: median {ms[len(ms) // 2]:.0f} ms over {len(ms)} key presses")
 
 
+def _check_layout(demo, label: str, problems: list[str]) -> None:
+    """The picture and its controls fit the notebook area at once; the picture is not enlarged."""
+    box = demo.evaluate(JS_LAYOUT)
+    room = min(LAYOUT_MAX_PX, box["area"] or LAYOUT_MAX_PX)
+    if box["height"] > room:
+        problems.append(f"{label}: picture and controls are {box['height']:.0f} px tall; the laptop shows {room} px")
+    if box["shown"] > box["natural"] / 2 + 0.5:
+        problems.append(
+            f"{label}: the picture is shown {box['shown']:.0f} px wide, larger than it was drawn "
+            f"({box['natural']} pixels for 2 per CSS px)"
+        )
+
+
+def _check_speed_and_weight(driver: DemoDriver, latency: Latency, label: str, problems: list[str], report) -> None:
+    """Each control's new picture within CONTROL_P95_MS (p95); light pictures while moving."""
+    ms = sorted([s[0] for samples in latency.values() for s in samples] + driver.clicks)
+    if ms:
+        p95 = latency_stats(ms)["p95_ms"]
+        if p95 > CONTROL_P95_MS:
+            problems.append(f"{label}: a control takes {p95:.0f} ms to a new picture at p95 (limit {CONTROL_P95_MS})")
+    pictures = driver.pictures()
+    light = sorted(p["bytes"] for p in pictures if p["bytes"] and p["type"] != CRISP)
+    crisp = sorted(p["bytes"] for p in pictures if p["bytes"] and p["type"] == CRISP)
+    if light and light[len(light) // 2] > LIGHT_MAX_BYTES:
+        problems.append(f"{label}: pictures sent while moving weigh {light[len(light) // 2] / 1e3:.0f} KB (median)")
+    if not light:
+        problems.append(f"{label}: no light picture was sent while the controls moved")
+    report.summary.append(
+        f"weight {label}: {len(light)} moving pictures, median {light[len(light) // 2] / 1e3 if light else 0:.0f} KB;"
+        f" {len(crisp)} at rest, median {crisp[len(crisp) // 2] / 1e3 if crisp else 0:.0f} KB;"
+        f" {len(ms)} control actions, p95 {latency_stats(ms)['p95_ms'] if ms else 0:.0f} ms"
+    )
+
+
 def _check_demo(page, demo, label: str, shot, problems: list[str], report) -> None:
-    """A picture and a caption, a screenshot to ``shot``, then every control drives the picture."""
+    """A picture and a caption that fit a laptop, a screenshot to ``shot``, then every control
+    drives the picture, quickly and with light pictures."""
     if not _picture_shown(page, demo, label, problems):
         return
     driver = DemoDriver(page, demo, label, problems, report)
     demo.scroll_into_view_if_needed()
     driver.settle(quiet_ms=200)
+    _check_layout(demo, label, problems)
     demo.screenshot(path=shot)
 
     controls = demo.locator("[class*='kf-control-']")
@@ -207,6 +269,7 @@ def _check_demo(page, demo, label: str, shot, problems: list[str], report) -> No
         report.summary.append(f"note {label}: controls not driven by the suite: {', '.join(untested)}")
     if latency:
         _record_latency(label, latency, report)
+    _check_speed_and_weight(driver, latency, label, problems, report)
 
 
 def _check_demos(page, panel, stem: str, problems: list[str], report) -> int:

@@ -76,7 +76,7 @@ def test_app_refuses_a_visitor_without_the_token(app):
 
 
 def test_app_shows_prose_and_a_live_demo_without_code(browser, app, report):
-    context = browser.new_context(viewport={"width": 1200, "height": 1400})
+    context = browser.new_context(viewport={"width": 1920, "height": 1200})  # a wide screen: nothing stretches
     errors: list[str] = []
     try:
         # Only this machine's server: the badge images and anything else from the web are not fetched.
@@ -92,6 +92,9 @@ def test_app_shows_prose_and_a_live_demo_without_code(browser, app, report):
             page.wait_for_function(JS_IMG_READY, arg=img.element_handle(), timeout=RENDER_TIMEOUT_MS)
         except PlaywrightTimeoutError:
             pytest.fail(f"no live demo picture in the app view; page errors: {errors}", pytrace=False)
+
+        shown, natural = img.evaluate("i => [i.getBoundingClientRect().width, i.naturalWidth]")
+        assert shown <= natural / 2 + 0.5, f"the app shows the picture {shown:.0f} px wide, drawn for {natural / 2:.0f}"
 
         text = page.inner_text("body")
         assert re.search(r"Chapter 4\b", text), "the chapter's prose is not shown"
