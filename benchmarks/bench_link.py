@@ -38,16 +38,12 @@ from __future__ import annotations
 import argparse
 import contextlib
 import http.client
-import json
 import os
 import shutil
 import statistics
-import subprocess
 import sys
 import tempfile
 import time
-import urllib.error
-import urllib.request
 from collections.abc import Iterator
 from dataclasses import dataclass, field
 from pathlib import Path
@@ -57,7 +53,7 @@ from playwright.sync_api import Error as PlaywrightError
 from playwright.sync_api import sync_playwright
 
 from benchmarks.shaping_relay import ShapingRelay
-from tests.browser.conftest import CHROMIUM, CHROMIUM_FLAGS, LAB_SETTINGS, latency_stats
+from tests.browser.conftest import CHROMIUM, CHROMIUM_FLAGS, latency_stats
 from tests.browser.demo_driver import JS_IMG_READY, JS_SLIDER_STATE
 from tests.browser.lab import (
     WIDGET_VIEW,
@@ -66,10 +62,10 @@ from tests.browser.lab import (
     open_notebook,
     read_cells,
     run_all,
+    running_lab,
     shutdown_kernels,
     wait_for_widgets,
 )
-from tests.servers import free_port
 from tools.course import chapters
 
 ROOT = Path(__file__).resolve().parents[1]
@@ -80,7 +76,6 @@ CHANGE_TIMEOUT_MS = 10_000  # a key press or a click -> the first new picture
 REST_QUIET_MS = 150  # at rest: the crisp picture shown, no new one for this long, the kernel idle
 REST_FALLBACK_MS = 1_500  # ... or, for a demo that sends no crisp picture, no new one for this long
 REST_TIMEOUT_MS = 20_000
-SERVER_START_TIMEOUT_S = 60
 CHECK_BYTES = 1_000_000  # the self-check's download
 
 P50_TARGET_MS = 200.0
@@ -332,71 +327,16 @@ def measure_chapter(context, url: str, notebook: Path) -> list[DemoFigures]:
 # --------------------------------------------------------------------------- server, link
 
 
-def _status_ok(url: str) -> bool:
-    try:
-        with urllib.request.urlopen(url + "api/status", timeout=2) as response:
-            return response.status == 200
-    except (urllib.error.URLError, OSError):
-        return False
-
-
 @contextlib.contextmanager
 def lab_server(source: Path) -> Iterator[tuple[str, Path]]:
-    """JupyterLab on 127.0.0.1 over a temporary copy of ``source``, with the browser suite's
-    settings (autosave off), no token; yields its address and its root folder."""
+    """JupyterLab over a temporary copy of ``source``, as the browser suite starts it
+    (:func:`tests.browser.lab.running_lab`: autosave off, no token); yields its address and root."""
     with tempfile.TemporaryDirectory(prefix="kfcourse-link-") as tmp:
         base = Path(tmp)
         root = base / "notebooks"
         shutil.copytree(source, root, ignore=shutil.ignore_patterns(".ipynb_checkpoints", "__pycache__"))
-        settings = base / "user-settings"
-        for plugin, values in LAB_SETTINGS.items():
-            path = settings / f"{plugin}.jupyterlab-settings"
-            path.parent.mkdir(parents=True, exist_ok=True)
-            path.write_text(json.dumps(values, indent=2), encoding="utf-8")
-        for sub in ("workspaces", "runtime", "config"):
-            (base / sub).mkdir()
-        env = {
-            **os.environ,
-            "JUPYTERLAB_SETTINGS_DIR": str(settings),
-            "JUPYTERLAB_WORKSPACES_DIR": str(base / "workspaces"),
-            "JUPYTER_RUNTIME_DIR": str(base / "runtime"),
-            "JUPYTER_CONFIG_DIR": str(base / "config"),
-        }
-        env.pop("JUPYTER_TOKEN", None)
-        port = free_port()
-        url = f"http://127.0.0.1:{port}/"
-        cmd = [
-            str(Path(sys.executable).with_name("jupyter")),
-            "lab",
-            "--no-browser",
-            "--ServerApp.ip=127.0.0.1",
-            f"--ServerApp.port={port}",
-            "--ServerApp.port_retries=0",
-            "--IdentityProvider.token=",
-            "--PasswordIdentityProvider.hashed_password=",
-            "--LabApp.expose_app_in_browser=True",
-            f"--ServerApp.root_dir={root}",
-        ]
-        if hasattr(os, "geteuid") and os.geteuid() == 0:
-            cmd.append("--allow-root")
-        log = base / "server.log"
-        with open(log, "wb") as log_file:
-            proc = subprocess.Popen(cmd, cwd=root, env=env, stdout=log_file, stderr=subprocess.STDOUT)
-        try:
-            deadline = time.monotonic() + SERVER_START_TIMEOUT_S
-            while not _status_ok(url):
-                if proc.poll() is not None or time.monotonic() > deadline:
-                    tail = "\n".join(log.read_text(errors="replace").splitlines()[-20:])
-                    raise SystemExit(f"jupyter lab did not start:\n{tail}")
-                time.sleep(0.25)
-            yield url, root
-        finally:
-            proc.terminate()
-            try:
-                proc.wait(timeout=15)
-            except subprocess.TimeoutExpired:
-                proc.kill()
-                proc.wait()
+        with running_lab(base, root) as server:
+            yield server.url, root
 
 
 def check_link(url: str, root: Path) -> tuple[float, float]:

@@ -17,16 +17,14 @@ import hashlib
 import json
 import os
 import shutil
-import socket
 import statistics
-import subprocess
-import sys
-import time
 import urllib.error
 import urllib.request
 from pathlib import Path
 
 import pytest
+
+from tests.browser.lab import LAB_SETTINGS, running_lab
 
 REPO_ROOT = Path(__file__).resolve().parents[2]
 ARTIFACTS = Path(__file__).resolve().parent / "artifacts"
@@ -41,21 +39,6 @@ CHROMIUM_FLAGS = [
     "--disable-component-update",
     "--disable-sync",
 ]
-SERVER_START_TIMEOUT_S = 60
-
-# JupyterLab user settings for the test server (a temporary JUPYTERLAB_SETTINGS_DIR).
-LAB_SETTINGS = {
-    "@jupyterlab/docmanager-extension/plugin": {"autosave": False, "confirmClosingDocument": False},
-    "@jupyterlab/notebook-extension/tracker": {
-        # Every cell stays in the DOM (the default windowing detaches far-away cells).
-        "windowingMode": "none",
-        # A notebook without kernelspec metadata starts the default kernel, no dialog.
-        "autoStartDefaultKernel": True,
-        "kernelShutdown": True,
-    },
-    "@jupyterlab/apputils-extension/notification": {"checkForUpdates": False, "fetchNews": "false"},
-    "@jupyterlab/extensionmanager-extension/plugin": {"enabled": False},
-}
 
 
 # --------------------------------------------------------------------------- notebooks
@@ -120,25 +103,6 @@ def browser(chromium_executable):
 # --------------------------------------------------------------------------- server
 
 
-def _free_port() -> int:
-    with socket.socket(socket.AF_INET, socket.SOCK_STREAM) as s:
-        s.bind(("127.0.0.1", 0))
-        return s.getsockname()[1]
-
-
-def _jupyter_command() -> list[str]:
-    sibling = Path(sys.executable).with_name("jupyter")
-    return [str(sibling)] if sibling.exists() else [sys.executable, "-m", "jupyter"]
-
-
-def _status_ok(url: str) -> bool:
-    try:
-        with urllib.request.urlopen(url + "api/status", timeout=2) as response:
-            return response.status == 200
-    except (urllib.error.URLError, OSError):
-        return False
-
-
 def _check_settings_applied(url: str) -> None:
     """The server reads our settings (above all: autosave off), not a user's own."""
     for plugin, values in LAB_SETTINGS.items():
@@ -146,19 +110,6 @@ def _check_settings_applied(url: str) -> None:
         with urllib.request.urlopen(f"{url}lab/api/settings/{package}:{name}", timeout=10) as response:
             applied = json.load(response)["settings"]
         assert applied == values, f"JupyterLab did not take the test settings for {plugin}: {applied}"
-
-
-class LabServer:
-    def __init__(self, url: str, root: Path, log: Path):
-        self.url = url  # ends with "/"
-        self.root = root
-        self.log = log
-
-    def log_tail(self, n: int = 40) -> str:
-        try:
-            return "\n".join(self.log.read_text(errors="replace").splitlines()[-n:])
-        except OSError:
-            return ""
 
 
 @pytest.fixture(scope="session")
@@ -173,60 +124,12 @@ def lab_server(tmp_path_factory, chromium_executable):
         shutil.copytree(source, root, ignore=shutil.ignore_patterns(".ipynb_checkpoints", "__pycache__"))
     else:
         root.mkdir()
-    settings = base / "user-settings"
-    for plugin, values in LAB_SETTINGS.items():
-        path = settings / f"{plugin}.jupyterlab-settings"
-        path.parent.mkdir(parents=True, exist_ok=True)
-        path.write_text(json.dumps(values, indent=2), encoding="utf-8")
-    for sub in ("workspaces", "runtime", "config"):
-        (base / sub).mkdir()
-    env = {
-        **os.environ,
-        "JUPYTERLAB_SETTINGS_DIR": str(settings),
-        "JUPYTERLAB_WORKSPACES_DIR": str(base / "workspaces"),
-        "JUPYTER_RUNTIME_DIR": str(base / "runtime"),
-        "JUPYTER_CONFIG_DIR": str(base / "config"),
-        "PYTHONUNBUFFERED": "1",
-    }
-    env.pop("JUPYTER_TOKEN", None)
-
-    port = _free_port()
-    url = f"http://127.0.0.1:{port}/"
-    cmd = [
-        *_jupyter_command(),
-        "lab",
-        "--no-browser",
-        "--ServerApp.ip=127.0.0.1",
-        f"--ServerApp.port={port}",
-        "--ServerApp.port_retries=0",
-        "--IdentityProvider.token=",
-        "--PasswordIdentityProvider.hashed_password=",
-        "--LabApp.expose_app_in_browser=True",
-        f"--ServerApp.root_dir={root}",
-    ]
-    if hasattr(os, "geteuid") and os.geteuid() == 0:
-        cmd.append("--allow-root")
-    log = base / "server.log"
-    with open(log, "wb") as log_file:
-        proc = subprocess.Popen(cmd, cwd=root, env=env, stdout=log_file, stderr=subprocess.STDOUT)
-    server = LabServer(url, root, log)
     try:
-        deadline = time.monotonic() + SERVER_START_TIMEOUT_S
-        while not _status_ok(url):
-            if proc.poll() is not None:
-                pytest.fail(f"jupyter lab exited with {proc.returncode}:\n{server.log_tail()}", pytrace=False)
-            if time.monotonic() > deadline:
-                pytest.fail(f"jupyter lab not up after {SERVER_START_TIMEOUT_S} s:\n{server.log_tail()}")
-            time.sleep(0.25)
-        _check_settings_applied(url)
-        yield server
-    finally:
-        proc.terminate()
-        try:
-            proc.wait(timeout=15)
-        except subprocess.TimeoutExpired:
-            proc.kill()
-            proc.wait()
+        with running_lab(base, root) as server:
+            _check_settings_applied(server.url)
+            yield server
+    except RuntimeError as exc:
+        pytest.fail(str(exc), pytrace=False)
     after = _hashes(watched)
     changed = sorted(p for p in before.keys() | after.keys() if before.get(p) != after.get(p))
     if changed:

@@ -7,14 +7,40 @@ one demo's controls is ``tests/browser/demo_driver.py``.
 
 from __future__ import annotations
 
+import contextlib
+import json
 import os
+import subprocess
+import sys
 import time
+import urllib.error
 import urllib.parse
+import urllib.request
+from collections.abc import Iterator
+from pathlib import Path
+
+from tests.servers import free_port
 
 try:
     from playwright.sync_api import TimeoutError as PlaywrightTimeoutError
 except ImportError:  # the `browser` fixture skips (fails on CI) with the reason
     PlaywrightTimeoutError = TimeoutError
+
+# JupyterLab user settings for the test server (a temporary JUPYTERLAB_SETTINGS_DIR).
+LAB_SETTINGS = {
+    "@jupyterlab/docmanager-extension/plugin": {"autosave": False, "confirmClosingDocument": False},
+    "@jupyterlab/notebook-extension/tracker": {
+        # Every cell stays in the DOM (the default windowing detaches far-away cells).
+        "windowingMode": "none",
+        # A notebook without kernelspec metadata starts the default kernel, no dialog.
+        "autoStartDefaultKernel": True,
+        "kernelShutdown": True,
+    },
+    "@jupyterlab/apputils-extension/notification": {"checkForUpdates": False, "fetchNews": "false"},
+    "@jupyterlab/extensionmanager-extension/plugin": {"enabled": False},
+}
+
+SERVER_START_TIMEOUT_S = 60
 
 VIEWPORT = {"width": 1280, "height": 800}  # a 13-inch laptop; the notebook opens beside the file browser
 RUN_ALL_TIMEOUT_MS = int(os.environ.get("KFCOURSE_RUN_ALL_TIMEOUT_S", "240")) * 1000
@@ -59,6 +85,94 @@ JS_CELLS = """() => {
         };
     });
 }"""
+
+
+# --------------------------------------------------------------------------- the server
+
+
+class LabServer:
+    """A JupyterLab server started by :func:`running_lab`."""
+
+    def __init__(self, url: str, root: Path, log: Path):
+        self.url = url  # ends with "/"
+        self.root = root
+        self.log = log
+
+    def log_tail(self, n: int = 40) -> str:
+        try:
+            return "\n".join(self.log.read_text(errors="replace").splitlines()[-n:])
+        except OSError:
+            return ""
+
+
+def _status_ok(url: str) -> bool:
+    try:
+        with urllib.request.urlopen(url + "api/status", timeout=2) as response:
+            return response.status == 200
+    except (urllib.error.URLError, OSError):
+        return False
+
+
+@contextlib.contextmanager
+def running_lab(base: Path, root: Path) -> Iterator[LabServer]:
+    """JupyterLab on 127.0.0.1 serving ``root``, no token, with ``LAB_SETTINGS`` (autosave off)
+    and its settings, workspaces, runtime and config folders under ``base``; stopped on exit.
+
+    Raises ``RuntimeError`` with the end of its log if it exits or is not up in time.
+    """
+    settings = base / "user-settings"
+    for plugin, values in LAB_SETTINGS.items():
+        path = settings / f"{plugin}.jupyterlab-settings"
+        path.parent.mkdir(parents=True, exist_ok=True)
+        path.write_text(json.dumps(values, indent=2), encoding="utf-8")
+    for sub in ("workspaces", "runtime", "config"):
+        (base / sub).mkdir()
+    env = {
+        **os.environ,
+        "JUPYTERLAB_SETTINGS_DIR": str(settings),
+        "JUPYTERLAB_WORKSPACES_DIR": str(base / "workspaces"),
+        "JUPYTER_RUNTIME_DIR": str(base / "runtime"),
+        "JUPYTER_CONFIG_DIR": str(base / "config"),
+        "PYTHONUNBUFFERED": "1",
+    }
+    env.pop("JUPYTER_TOKEN", None)
+    port = free_port()
+    url = f"http://127.0.0.1:{port}/"
+    sibling = Path(sys.executable).with_name("jupyter")
+    cmd = [
+        *([str(sibling)] if sibling.exists() else [sys.executable, "-m", "jupyter"]),
+        "lab",
+        "--no-browser",
+        "--ServerApp.ip=127.0.0.1",
+        f"--ServerApp.port={port}",
+        "--ServerApp.port_retries=0",
+        "--IdentityProvider.token=",
+        "--PasswordIdentityProvider.hashed_password=",
+        "--LabApp.expose_app_in_browser=True",
+        f"--ServerApp.root_dir={root}",
+    ]
+    if hasattr(os, "geteuid") and os.geteuid() == 0:
+        cmd.append("--allow-root")
+    log = base / "server.log"
+    with open(log, "wb") as log_file:
+        proc = subprocess.Popen(cmd, cwd=root, env=env, stdout=log_file, stderr=subprocess.STDOUT)
+    server = LabServer(url, root, log)
+    try:
+        deadline = time.monotonic() + SERVER_START_TIMEOUT_S
+        while not _status_ok(url):
+            if proc.poll() is not None:
+                raise RuntimeError(f"jupyter lab exited with {proc.returncode}:\n{server.log_tail()}")
+            if time.monotonic() > deadline:
+                raise RuntimeError(f"jupyter lab not up after {SERVER_START_TIMEOUT_S} s:\n{server.log_tail()}")
+            time.sleep(0.25)
+        yield server
+    finally:
+        proc.terminate()
+        try:
+            proc.wait(timeout=15)
+        except subprocess.TimeoutExpired:
+            proc.kill()
+            proc.wait()
 
 
 # --------------------------------------------------------------------------- REST helpers
