@@ -1,17 +1,21 @@
 """What every demo shares: a caption, the picture, the controls, and Run/Pause.
 
-A demo is a small model/view pair.  Each control is bound to a model method:
-a slider or toggle to a setter called with the new value, a button to an action
-called with nothing.  After every call the demo redraws by itself: ``draw``
-updates the figure's artists from the model and the renderer re-renders only
-what moves.  A new demo is then a model, a draw function and a list of controls::
+A demo is a model, a view and a few lines of wiring.  The model holds the state and
+the methods the controls call; the view (in ``kfcourse.plots``) is a make function that
+draws the figure and an update function that moves its artists from the model.  Each
+control is bound to a model method: a slider or toggle to a setter called with the new
+value, a button to an action called with nothing.  After every call the demo redraws by
+itself: ``draw`` updates the artists and the renderer re-renders only what moves, or the
+whole figure when something static changed.  While a control moves or Run plays the page
+gets a light picture; once the student stops, the crisp one.  The wiring::
 
+    view = my_view()
     Demo(
         name="my-demo",
         caption="<b>My demo.</b> ...",
         model=model,
-        renderer=FigureRenderer(fig, dynamic=[line]),
-        draw=draw,
+        renderer=FigureRenderer(view.fig, view.moving),
+        draw=partial(update_my_view, view, model),
         controls={"noise": (slider(...), model.set_noise), "again": (button("Again"), model.new_run)},
     )
 """
@@ -29,7 +33,7 @@ from ..plots.style import PIXEL_DENSITY, FigureRenderer
 FRAME_INTERVAL = 0.08  # s between frames while running: 12.5 pictures a second
 REST_AFTER = 0.3  # s without a change after which the light picture gives way to the crisp one
 FRAME_GAP = 0.02  # s the kernel always rests between frames, to hear Pause and slider moves
-DISPLAY_WIDTH = 950  # CSS px: about the width JupyterLab stretches a demo's picture to beside its side bar
+DISPLAY_WIDTH = 950  # CSS px: a demo's picture at most (JupyterLab's output is 848 px on a 1280 px laptop)
 
 
 class Demo(widgets.VBox):
@@ -119,12 +123,16 @@ class Demo(widgets.VBox):
         self.controls = {key: control for key, (control, _) in bound.items()}
         for key, (control, method) in bound.items():
             control.add_class(f"kf-control-{key}")
+            if isinstance(control, widgets.ToggleButtons):  # its label and its buttons on one line
+                control.layout.display = "flex"
+                control.layout.align_items = "center"
+                control.style.description_width = "initial"
             self._bind(control, method)
         self.display_width = display_width
         renderer.set_pixel_width(PIXEL_DENSITY * display_width)
         # Shown at display_width CSS px, shrunk to fit a narrower page, never enlarged (an app's
         # full window would otherwise stretch it); the height follows the picture's shape.
-        size = widgets.Layout(width=f"{display_width}px", max_width="100%", min_width="0", height="auto")
+        size = widgets.Layout(width="100%", max_width=f"{display_width}px", min_width="0", height="auto", margin="0")
         self.image = widgets.Image(format="jpeg", layout=size)
         self.image.add_class("kf-figure")
         cap = widgets.HTML(f"<div style='color:#333;font-size:13px;line-height:1.4'>{caption}</div>")

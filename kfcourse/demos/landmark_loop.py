@@ -15,7 +15,7 @@ DROPOUT = (40, 70)  # steps k with t0 <= k < t1 without readings when dropout is
 FIRST_FRAME = 60  # the step shown first: on the top straight, two landmarks in view
 NOISE_RANGE = (-1.0, 1.0)  # log10 of the noise scales the sliders reach: 0.1x to 10x
 FILTERS = ("EKF", "UKF")  # the choices shown; the run takes them in lower case
-IMAGE_WIDTH = 520  # CSS px at most: the map and strips, 1.2 times as tall as wide, stay under 640 px tall
+IMAGE_WIDTH = 500  # CSS px at most: beside the column, within a laptop's 848 px; 1.2 times as tall as wide
 COLUMN_WIDTH = 340  # CSS px: the controls and the readout beside the picture
 GATE = 4.0  # the filter rejects a reading more than 4 standard deviations from its prediction (chapter 8)
 
@@ -112,9 +112,9 @@ def _readout(model: LoopModel) -> str:
     return (
         f"<div style='font-size:13px;line-height:1.5'>step {k}, t = {run.t[k]:.1f} s: {sight}{kidnapped}<br>"
         f"<span style='color:{palette.ESTIMATE}'>position error {run.error[k]:.3f} m</span><br>"
-        f"1σ ellipse area: <span style='color:{palette.PREDICTION}'>{before:.3g} m² before</span> → "
-        f"<span style='color:{palette.ESTIMATE}'>{after:.3g} m² after</span> the readings{shrink}<br>"
-        f"truth {inside} the 3σ ellipse (so far at {model.share_inside():.0%} of the steps)</div>"
+        f"1σ area: <span style='color:{palette.PREDICTION}'>{before:.3g}</span> before the readings → "
+        f"<span style='color:{palette.ESTIMATE}'>{after:.3g} m²</span>{shrink}<br>"
+        f"truth {inside} the 3σ ellipse ({model.share_inside():.0%} of steps so far)</div>"
     )
 
 

@@ -205,7 +205,7 @@ def linearization_view(
     (curve,) = ax_f.plot(x, x, color=palette.INK, lw=1.5, label="f(x)")
     (tangent,) = ax_f.plot(x, x, color=palette.MEASUREMENT, lw=1.8, ls="--", label="tangent at m")
     (point,) = ax_f.plot([0], [0], "o", color=palette.MEASUREMENT, ms=6)
-    ax_f.legend(loc="upper left", fontsize=9)
+    ax_f.legend(loc="upper center", fontsize=9)  # the middle top: clear of every curve's arms
     (density,) = ax_in.plot(x, x, color=palette.PREDICTION, lw=2)
     (sampled,) = ax_out.plot([0, 1], [0, 1], color=palette.TRUTH, lw=1.5, label="sampled")
     (ekf,) = ax_out.plot([0, 1], [0, 1], color=palette.ESTIMATE, lw=2, label="EKF")

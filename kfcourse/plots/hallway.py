@@ -80,7 +80,9 @@ def hallway_view(doors) -> HallwayView:
     flat = np.full(n, 1.0 / n)
     bars = belief_bars(ax, flat)
     status = ax.text(0.99, 0.97, "", transform=ax.transAxes, ha="right", va="top", fontsize=10)
-    setup = ax.text(0.01, 0.97, "", transform=ax.transAxes, ha="left", va="top", fontsize=9, color=palette.INK)
+    clear = {"facecolor": "white", "edgecolor": "none", "alpha": 0.85, "pad": 1.0}  # over the grid lines
+    style = {"transform": ax.transAxes, "ha": "left", "va": "top", "fontsize": 9, "color": palette.INK, "bbox": clear}
+    setup = ax.text(0.01, 0.97, "", **style)
     end_walls, robot = _hallway_map(ax_map, doors)
     ax_lik.set_ylim(0, 1.05)
     ax_lik.set_ylabel("p(z | x)")

@@ -50,15 +50,22 @@ CONTROL_P95_MS = 250  # key press or click to the new picture, 95th percentile p
 LIGHT_MAX_BYTES = 60_000  # median weight of the pictures sent while a control moves or Run plays
 
 # The demo's picture and controls (every child but the caption): their height, the height of the
-# notebook area that shows them, and the picture's CSS width against its pixel width.
+# notebook area that shows them, how far any of them reaches past the output's right edge or
+# overflows its box (a scroll bar), and the picture's CSS width against its pixel width.
 JS_LAYOUT = """(d) => {
     const parts = Array.from(d.children).filter(c => !c.classList.contains('kf-caption'));
     const rects = parts.map(c => c.getBoundingClientRect()).filter(r => r.height > 0);
     const img = d.querySelector('img.kf-figure');
     const area = d.closest('.jp-WindowedPanel-outer');
+    const output = d.closest('.jp-OutputArea-output') || d.parentElement;
+    const items = d.querySelectorAll('img, .widget-slider, .widget-button, .widget-toggle-buttons, .widget-html');
     return {
         height: Math.max(...rects.map(r => r.bottom)) - Math.min(...rects.map(r => r.top)),
         area: area ? area.clientHeight : null,
+        overflow: Math.max(
+            ...Array.from(items).map(e => e.getBoundingClientRect().right - output.getBoundingClientRect().right),
+            ...[d, ...d.querySelectorAll('.widget-box')].map(b => b.scrollWidth - b.clientWidth),  // a scroll bar
+        ),
         shown: img.getBoundingClientRect().width,
         natural: img.naturalWidth,
     };
@@ -212,11 +219,14 @@ def _record_latency(label: str, latency: Latency, report) -> None:
 
 
 def _check_layout(demo, label: str, problems: list[str]) -> None:
-    """The picture and its controls fit the notebook area at once; the picture is not enlarged."""
+    """The picture and its controls fit the notebook area at once, nothing sticks out on the right,
+    and the picture is not enlarged."""
     box = demo.evaluate(JS_LAYOUT)
     room = min(LAYOUT_MAX_PX, box["area"] or LAYOUT_MAX_PX)
     if box["height"] > room:
         problems.append(f"{label}: picture and controls are {box['height']:.0f} px tall; the laptop shows {room} px")
+    if box["overflow"] > 1:
+        problems.append(f"{label}: the picture or a control sticks out {box['overflow']:.0f} px: a scroll bar")
     if box["shown"] > box["natural"] / 2 + 0.5:
         problems.append(
             f"{label}: the picture is shown {box['shown']:.0f} px wide, larger than it was drawn "
@@ -254,7 +264,13 @@ def _check_demo(page, demo, label: str, shot, problems: list[str], report) -> No
     demo.scroll_into_view_if_needed()
     driver.settle(quiet_ms=200)
     _check_layout(demo, label, problems)
+    # The screenshot with its caption: a taller window of the same width, so nothing is cut off.
+    page.set_viewport_size({"width": VIEWPORT["width"], "height": 1400})
+    demo.scroll_into_view_if_needed()
+    page.wait_for_timeout(200)
     demo.screenshot(path=shot)
+    page.set_viewport_size(VIEWPORT)
+    demo.scroll_into_view_if_needed()
 
     controls = demo.locator("[class*='kf-control-']")
     all_keys = {DemoDriver.key_of(controls.nth(i)) for i in range(controls.count())}

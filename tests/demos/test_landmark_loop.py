@@ -195,7 +195,7 @@ def try_1_a_normal_lap_is_accurate_and_honest(demo):
     assert 0.001 <= min(areas) and max(areas) < 0.01  # "the 1-sigma area after the readings: 0.001 to 0.01 m²"
     assert round(bar_area(m.run, 0), 3) == 0.032  # "the readout's before starts higher, 0.032 m² at step 0"
     assert (min(beams), max(beams)) == (1, 3)  # "one to three beams"
-    assert "so far at 99% of the steps" in readout(demo)
+    assert "(99% of steps so far)" in readout(demo)
 
 
 def try_2_dropout_balloons_then_three_readings_cut_it_tenfold(demo):
@@ -248,7 +248,7 @@ def try_4_precise_sensor_after_a_blind_stretch_ekf_against_ukf(demo):
     demo.controls["sensor"].value = demo.controls["sensor"].base ** demo.controls["sensor"].min
     assert m.sensor_noise == pytest.approx(0.1) and m.motion_noise == pytest.approx(10.0) and m.dropout
     demo.controls["frame"].value = DROPOUT[0] - 1
-    assert "so far at 57% of the steps" in readout(demo)  # "at step 39 ... inside at only 57 %"
+    assert "(57% of steps so far)" in readout(demo)  # "at step 39 ... inside at only 57 %"
     k = DROPOUT[1]
     demo.controls["frame"].value = k
     run = m.run
@@ -290,7 +290,7 @@ def try_5_kidnap_the_filter_stays_confidently_wrong(demo):
     assert longest < 1.0  # "its 2-sigma ellipse stays under a metre across"
     assert not run.inside[after].any()
     demo.controls["frame"].value = demo.controls["frame"].max
-    assert "so far at 48% of the steps" in readout(demo)
+    assert "(48% of steps so far)" in readout(demo)
     ekf_error = run.error.copy()
     demo.controls["filter"].value = "UKF"
     assert np.abs(m.run.error - ekf_error).max() < 0.05  # "the UKF fares no better"
