@@ -147,6 +147,20 @@ def show_sideways_gaussian(line: Line2D, mean: float, var: float, lo: float, hi:
         line.set_markevery([1])
 
 
+def show_function(panels: FunctionPanels, curve: Line2D, tangent: Line2D, model, limits) -> tuple[float, float]:
+    """f and the EKF's tangent at m on the function panel, whose output axis is ``limits``.
+
+    ``model`` needs ``m``, ``f`` and ``df`` (f and f').  The axis is set only when it
+    changes (:func:`~kfcourse.plots.style.set_limits`).  Returns f(m) and the slope f'(m).
+    """
+    set_limits(panels.ax_f, ylim=limits)
+    x, m = curve.get_xdata(), model.m
+    fm, slope = float(model.f(m)), float(model.df(m))
+    curve.set_ydata(model.f(x))
+    tangent.set_ydata(fm + slope * (x - m))  # f(m) + f'(m) (x - m)
+    return fm, slope
+
+
 def show_input_density(panels: FunctionPanels, line: Line2D, m: float, s: float) -> np.ndarray:
     """Draw the input density N(m, s²) on ``line`` (its x data is the grid); returns the densities.
 

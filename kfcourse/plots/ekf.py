@@ -17,11 +17,12 @@ from .curves import (
     FunctionPanels,
     axis_range,
     function_panels,
+    show_function,
     show_input_density,
     show_sampled_output,
     show_sideways_gaussian,
 )
-from .style import new_figure, set_limits
+from .style import new_figure
 
 
 def share_outside(run) -> str:
@@ -231,12 +232,8 @@ def update_linearization_view(view: LinearizationView, model) -> None:
     """
     panels = view.panels
     lo, hi = view.output_limits[model.function]
-    set_limits(panels.ax_f, ylim=(lo, hi))
-    x = view.curve.get_xdata()
+    fm, slope = show_function(panels, view.curve, view.tangent, model, (lo, hi))
     m, s = model.m, model.s
-    fm, slope = float(model.f(m)), float(model.df(m))
-    view.curve.set_ydata(model.f(x))
-    view.tangent.set_ydata(fm + slope * (x - m))  # f(m) + f'(m) (x - m)
     view.point.set_data([m], [fm])
     show_input_density(panels, view.input_density, m, s)
     y = model.samples()

@@ -20,11 +20,12 @@ from .curves import (
     FunctionPanels,
     axis_range,
     function_panels,
+    show_function,
     show_input_density,
     show_sampled_output,
     show_sideways_gaussian,
 )
-from .style import new_figure, set_limits
+from .style import new_figure
 
 
 def _gaussian(grid, mean: float, var: float) -> np.ndarray:
@@ -291,12 +292,8 @@ def update_sigma_points_view(view: SigmaPointsView, model) -> None:
     """
     panels = view.panels
     lo, hi = view.output_limits[model.function]
-    set_limits(panels.ax_f, ylim=(lo, hi))
-    x = view.curve.get_xdata()
+    show_function(panels, view.curve, view.tangent, model, (lo, hi))
     m, s, f = model.m, model.s, model.f
-    fm, slope = float(f(m)), float(model.df(m))
-    view.curve.set_ydata(f(x))
-    view.tangent.set_ydata(fm + slope * (x - m))  # f(m) + f'(m) (x - m)
     show_input_density(panels, view.input_density, m, s)
     chi, w = model.sigma_points()
     Y = f(chi)  # the sigma points through the true f
