@@ -27,3 +27,21 @@ class Record:
         for name, value in vars(self).items():
             if isinstance(value, np.ndarray):
                 object.__setattr__(self, name, read_only(value, dtype=None))
+
+
+def text_table(header: list[str], rows: list[list[str]]) -> str:
+    """A plain-text table: the header, a rule, then one line per row, each column as wide as its widest cell.
+
+    The cells are strings already formatted by the caller (units and digits are theirs to choose),
+    so that a run record's ``table()`` can print itself in a notebook without a loop in the cell.
+    The first column is left-aligned, the others right-aligned (numbers).
+    """
+    lines = [list(header), *[list(row) for row in rows]]
+    if any(len(line) != len(header) for line in lines):
+        raise ValueError(f"rows must each have {len(header)} cells, one per header")
+    widths = [max(len(line[i]) for line in lines) for i in range(len(header))]
+
+    def fmt(line):
+        return "  ".join(c.ljust(w) if i == 0 else c.rjust(w) for i, (c, w) in enumerate(zip(line, widths)))
+
+    return "\n".join([fmt(lines[0]), "  ".join("-" * w for w in widths), *(fmt(line) for line in lines[1:])])
