@@ -54,7 +54,7 @@ from playwright.sync_api import sync_playwright
 
 from benchmarks.shaping_relay import ShapingRelay
 from tests.browser.conftest import CHROMIUM, CHROMIUM_FLAGS, latency_stats
-from tests.browser.demo_driver import JS_IMG_READY, JS_SLIDER_STATE
+from tests.browser.demo_driver import JS_IMG_READY, JS_SLIDER_STATE, JS_WATCH_IMG
 from tests.browser.lab import (
     WIDGET_VIEW,
     PlaywrightTimeoutError,
@@ -85,37 +85,6 @@ CRISP = "image/jpeg"
 
 # --------------------------------------------------------------------------- page-side helpers
 
-# Records every src change of the picture: when (performance.now()), the time of the last
-# keydown before it, and the size and MIME type of the blob behind the new src, fetched at once
-# (the widget revokes the old blob URL when it sets the next one).
-JS_WATCH = """(img) => {
-    if (!window.__kfLink) {
-        window.__kfLink = {key: null, click: null};
-        document.addEventListener('keydown', e => { window.__kfLink.key = e.timeStamp; }, true);
-        document.addEventListener('click', e => { window.__kfLink.click = e.timeStamp; }, true);
-    }
-    const changes = [];
-    img.__kfLink = changes;
-    new MutationObserver(records => {
-        const srcs = records.filter(r => r.attributeName === 'src');
-        srcs.forEach((r, i) => {
-            // The src each change set: the next record's old value, or the current one for the last.
-            const src = i + 1 < srcs.length ? srcs[i + 1].oldValue : img.getAttribute('src');
-            const entry = {t: performance.now(), key: window.__kfLink.key, bytes: null, type: null, holds: null};
-            changes.push(entry);
-            fetch(src).then(r => r.blob()).then(async b => {
-                const head = new Uint8Array(await b.slice(0, 12).arrayBuffer());
-                const text = (a, z) => String.fromCharCode(...head.slice(a, z));
-                entry.holds = text(0, 3) === '\\xff\\xd8\\xff' ? 'image/jpeg'
-                    : text(0, 4) === 'RIFF' && text(8, 12) === 'WEBP' ? 'image/webp'
-                    : text(0, 4) === '\\x89PNG' ? 'image/png' : 'unknown';
-                entry.type = b.type;
-                entry.bytes = b.size;
-            }).catch(() => { entry.bytes = -1; entry.type = entry.holds = 'unreadable'; });
-        });
-    }).observe(img, {attributes: true, attributeFilter: ['src'], attributeOldValue: true});
-}"""
-
 # Resolves once the page is at rest after change number n: the crisp picture is shown (or no
 # picture came for a long while), nothing new for a moment, every blob read, the kernel idle.
 JS_AT_REST = """async (img, [n, crisp, quiet, fallback, max]) => {
@@ -123,7 +92,7 @@ JS_AT_REST = """async (img, [n, crisp, quiet, fallback, max]) => {
         const s = window.jupyterapp.shell.currentWidget.sessionContext;
         return s && s.session && s.session.kernel ? s.session.kernel.status : 'none';
     };
-    const changes = img.__kfLink;
+    const changes = img.__kf.changes;
     const start = performance.now();
     let count = changes.length, since = performance.now();
     while (performance.now() - start < max) {
@@ -174,18 +143,18 @@ class Picture:
         self.page = page
         self.img = demo.locator("img.kf-figure").first.element_handle()
         self.page.wait_for_function(JS_IMG_READY, arg=self.img, timeout=CHANGE_TIMEOUT_MS * 3)
-        self.img.evaluate(JS_WATCH)
+        self.img.evaluate(JS_WATCH_IMG)
 
     def count(self) -> int:
-        return self.img.evaluate("i => i.__kfLink.length")
+        return self.img.evaluate("i => i.__kf.changes.length")
 
     def since(self, n: int) -> list[dict]:
-        return self.img.evaluate("(i, n) => i.__kfLink.slice(n)", n)
+        return self.img.evaluate("(i, n) => i.__kf.changes.slice(n)", n)
 
     def wait_change(self, n: int) -> bool:
         try:
             self.page.wait_for_function(
-                "([i, n]) => i.__kfLink.length > n", arg=[self.img, n], timeout=CHANGE_TIMEOUT_MS, polling=20
+                "([i, n]) => i.__kf.changes.length > n", arg=[self.img, n], timeout=CHANGE_TIMEOUT_MS, polling=20
             )
             return True
         except PlaywrightTimeoutError:
@@ -255,7 +224,7 @@ def measure_run(picture: Picture, demo, figures: DemoFigures) -> None:
     play.click()  # Run
     picture.page.wait_for_timeout(RUN_MS)
     play.click()  # the same button now reads Pause
-    paused_at = picture.page.evaluate("() => window.__kfLink.click")
+    paused_at = picture.page.evaluate("() => window.__kfClickT")
     picture.wait_rest(n)
     entries = picture.since(n)
     running = [e for e in entries if e["t"] < paused_at]

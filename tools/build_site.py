@@ -3,8 +3,8 @@
     python tools/build_site.py            # -> site/index.html and one page per chapter
     python tools/build_site.py --out DIR --notebooks DIR
 
-Every ``notebooks/NN_*.ipynb`` becomes ``NN_*.html`` (and ``solutions.ipynb``, if there is
-one, comes last).  The notebooks are stored clean, so each one is executed here, with nbclient
+Every ``notebooks/NN_*.ipynb`` becomes ``NN_*.html``; the notation table (``notation.ipynb``)
+and the solutions (``solutions.ipynb``), where there are, come last.  The notebooks are stored clean, so each one is executed here, with nbclient
 and the course's own kernel.  nbconvert's JupyterLab template turns it into HTML; equations are
 typeset in the reader's browser by a copy of MathJax 2.7 from the ``jupyter-server-mathjax``
 package (requirements-dev.txt), served from ``_static/mathjax`` beside the pages: no CDN.
@@ -127,10 +127,9 @@ has Run/Pause, a short recording of its run). To drag the sliders, open the note
 
 
 def chapters(folder: Path) -> list[Path]:
-    """Every chapter notebook in order, then the solutions if there are any."""
+    """Every chapter notebook in order, then the notation table and the solutions where there are."""
     found = sorted(p for p in folder.glob("*.ipynb") if CHAPTER.fullmatch(p.name))
-    solutions = folder / "solutions.ipynb"
-    return found + ([solutions] if solutions.exists() else [])
+    return found + [p for p in (folder / "notation.ipynb", folder / "solutions.ipynb") if p.exists()]
 
 
 def title_of(nb) -> str:

@@ -27,9 +27,14 @@ CRISP = "image/jpeg"  # the picture at rest; anything else is a light one, sent 
 
 # --------------------------------------------------------------------------- page-side helpers
 
-# Records every src change of the picture: when, its bytes and MIME type (read from the blob
-# before the next picture revokes it), and once decoded, its pixel width and the CSS width it
-# is shown at; and the timestamps of the last keydown and click in the page.
+# Records every src change of the picture, in the page: when (performance.now()), the time of
+# the last keydown and click before it, and what the blob behind the new src holds (its MIME
+# type, bytes, the format its first bytes say and its pixel width), read at once because the
+# widget revokes the old blob URL when it sets the next one.  Several changes in one observer
+# batch are told apart by the mutation's old value (the src each change set is the next
+# record's old value, or the current src for the last).  Only the last change of a batch was
+# ever on screen: it alone gets the time it was decoded and the CSS width it is shown at.
+# The link benchmark (benchmarks/bench_link.py) watches the picture with this same script.
 JS_WATCH_IMG = """(img) => {
     if (!window.__kfKeyWatch) {
         window.__kfKeyWatch = true;
@@ -40,21 +45,34 @@ JS_WATCH_IMG = """(img) => {
     }
     const rec = {changes: []};
     img.__kf = rec;
+    const sniff = head => {
+        const text = (a, z) => String.fromCharCode(...head.slice(a, z));
+        return text(0, 3) === '\\xff\\xd8\\xff' ? 'image/jpeg'
+            : text(0, 4) === 'RIFF' && text(8, 12) === 'WEBP' ? 'image/webp'
+            : text(0, 4) === '\\x89PNG' ? 'image/png' : 'unknown';
+    };
     new MutationObserver(records => {
-        for (const r of records) {
-            if (r.attributeName !== 'src') continue;
-            const entry = {t: performance.now(), decoded: null, key: window.__kfKeyT, click: window.__kfClickT,
-                           type: null, bytes: null, natural: null, shown: null};
+        const srcs = records.filter(r => r.attributeName === 'src');
+        srcs.forEach((r, i) => {
+            const last = i + 1 === srcs.length;
+            const src = last ? img.getAttribute('src') : srcs[i + 1].oldValue;
+            const entry = {t: performance.now(), key: window.__kfKeyT, click: window.__kfClickT, type: null,
+                           holds: null, bytes: null, natural: null, decoded: last ? null : -1, shown: null};
             rec.changes.push(entry);
-            fetch(img.src).then(r => r.blob()).then(b => { entry.type = b.type; entry.bytes = b.size; },
-                                                    () => { entry.type = 'gone'; });
-            img.decode().then(() => {
-                entry.decoded = performance.now();
-                entry.natural = img.naturalWidth;
-                entry.shown = img.getBoundingClientRect().width;
-            }, () => { entry.decoded = -1; });
-        }
-    }).observe(img, {attributes: true, attributeFilter: ['src']});
+            fetch(src).then(r => r.blob()).then(async b => {
+                entry.holds = sniff(new Uint8Array(await b.slice(0, 12).arrayBuffer()));
+                entry.natural = (await createImageBitmap(b)).width;
+                entry.type = b.type;
+                entry.bytes = b.size;
+            }).catch(() => { entry.bytes = -1; entry.type = entry.holds = 'unreadable'; });
+            if (last) {
+                img.decode().then(() => {
+                    entry.decoded = performance.now();
+                    entry.shown = img.getBoundingClientRect().width;
+                }, () => { entry.decoded = -1; });
+            }
+        });
+    }).observe(img, {attributes: true, attributeFilter: ['src'], attributeOldValue: true});
 }"""
 
 JS_IMG_READY = """(img) => /^(data|blob):/.test(img.getAttribute('src') || '')
@@ -70,7 +88,7 @@ JS_SETTLE = """async (img, [quiet, max, crisp]) => {
     const start = performance.now();
     const atRest = () => {
         const last = img.__kf.changes[img.__kf.changes.length - 1];
-        return !last || (last.type === crisp && last.decoded !== null);
+        return !last || (last.type === crisp && last.bytes !== null && last.decoded !== null);
     };
     let n = img.__kf.changes.length, since = performance.now();
     while (performance.now() - start < max) {
@@ -132,6 +150,8 @@ class DemoDriver:
         """
         waited = self.img.evaluate(JS_SETTLE, [quiet_ms, max_ms, CRISP])
         last = self.last()
+        if last and last["holds"] not in (None, last["type"]):
+            self.problem(f"a picture sent as {last['type']} holds {last['holds']} bytes")
         if last and last["natural"] and last["shown"] and last["natural"] < 2 * last["shown"] - 1:
             self.problem(f"the picture at rest has {last['natural']} pixels for {last['shown']:.0f} CSS px: not crisp")
         return waited

@@ -45,10 +45,10 @@ def notebooks_dir() -> Path:
 
 
 def expected_pages() -> list[Path]:
-    """Every NN_*.ipynb in order, then solutions.ipynb if there is one."""
+    """Every NN_*.ipynb in order, then notation.ipynb and solutions.ipynb where there are."""
     folder = notebooks_dir()
     found = sorted(p for p in folder.glob("*.ipynb") if re.fullmatch(r"\d\d_[a-z0-9_]+\.ipynb", p.name))
-    return found + ([folder / "solutions.ipynb"] if (folder / "solutions.ipynb").exists() else [])
+    return found + [p for p in (folder / "notation.ipynb", folder / "solutions.ipynb") if p.exists()]
 
 
 def demo_cells(path: Path) -> int:
