@@ -12,26 +12,34 @@ Every checker returns a :class:`CheckResult` with ``passed`` (bool), ``mistake``
 still raises ``NotImplementedError`` gets "not yet" (``passed=False``,
 ``mistake=None``).
 
-Introduced in chapter 1; chapters 1, 3, 4, 5, 7, 8 and 9 end with exercises, and
-``notebooks/solutions.ipynb`` has one way to write each.
+Introduced in chapter 0; every chapter ends with an exercise (chapter 9 with two, the
+sigma points and the unscented transform), and ``notebooks/solutions.ipynb`` has one
+way to write each.
 """
 
 from ._core import MISTAKES, CheckResult
 from .bayes import bayes_predict, bayes_update
+from .exercises import affine_gaussian, cv_model, drift_sigma
 from .kalman import fuse, kf_1d_step, kf_step
+from .localization import localization_step
 from .nonlinear import range_bearing, range_bearing_jacobian, unicycle
-from .ukf import sigma_points
+from .ukf import sigma_points, unscented_transform
 
 __all__ = [
     "MISTAKES",
     "CheckResult",
+    "affine_gaussian",
     "bayes_predict",
     "bayes_update",
+    "cv_model",
+    "drift_sigma",
     "fuse",
     "kf_1d_step",
     "kf_step",
+    "localization_step",
     "range_bearing",
     "range_bearing_jacobian",
     "sigma_points",
     "unicycle",
+    "unscented_transform",
 ]

@@ -32,20 +32,71 @@ MISTAKES = {
     "shift_wrong_way": "the belief moves the wrong way",
     "ignores_boundary": "the boundary (wall or ring) is ignored",
     "leaks_at_wall": "probability leaks out at a wall",
+    "wall_sends_back": "a move that would pass a wall leaves the robot where it started",
+    "overwrites_not_adds": "a contribution overwrites a cell instead of adding to it",
+    "adds_not_multiplies": "the likelihood is added to the belief instead of multiplied",
     "swapped_R_Q": "R and Q are swapped",
     "std_not_var": "a standard deviation is used where a variance belongs (or the other way round)",
     "a_not_squared": "the variance is scaled by a instead of a²",
     "adds_variances": "the variances are added instead of fused",
+    "forgot_R": "the process noise R is never added",
+    "forgot_Q": "the measurement noise Q is left out",
+    "forgot_control": "the control term (bu, Bu) is left out",
+    "c_left_out": "c is left out of the update (its c = 1 form is used)",
+    "prior_not_predicted": "the previous belief (μ, Σ) is used where the predicted one (μ̄, Σ̄) belongs",
+    "no_inverse": "S is multiplied where its inverse S⁻¹ belongs",
+    "elementwise_inverse": "1/S, entry by entry, is used where the matrix inverse S⁻¹ belongs",
+    "wrong_order": "a matrix product is taken in the wrong order",
     "missing_transpose": "a transpose is missing",
     "sign_flip": "a sign is flipped",
     "q_not_sqrt_q": "q and √q are mixed up",
     "atan_not_atan2": "atan is used instead of atan2",
+    "atan2_arguments_swapped": "atan2's arguments are swapped: it takes (Δy, Δx)",
+    "robot_minus_landmark": "Δx and Δy point from the landmark to the robot (robot minus landmark)",
+    "heading_sign": "the heading θ enters with the wrong sign",
+    "degrees": "an angle is in degrees where radians belong",
+    "outputs_swapped": "the outputs are returned in the wrong order",
+    "bearing_row_sign": "the bearing row of H has the wrong sign",
+    "range_row_sign": "the range row of H has the wrong sign",
+    "dx_dy_swapped": "Δx and Δy are swapped",
+    "missing_theta": "the bearing's dependence on θ (∂φ/∂θ = −1) is left out",
+    "numeric_not_derived": "the Jacobian is approximated by finite differences instead of derived",
     "divides_by_omega": "divides by ω, with no straight-line limit at ω = 0",
     "euler_step": "the pose moves in a straight line even while turning",
+    "exact_zero_test": "ω is compared with exactly 0, so a tiny ω still goes through V/ω",
+    "sin_cos_swapped": "sin and cos are swapped",
+    "heading_without_dt": "the heading turns by ω instead of ωΔt",
+    "speed_not_distance": "the speed V is used where the distance VΔt belongs",
     "unwrapped_angle": "an angle is not wrapped into (−π, π]",
     "wrong_weights": "the weights are wrong",
+    "missing_scale": "the points are not spread by √(n + λ) times a square root of Σ",
+    "f_not_applied": "the sigma points are not passed through f",
+    "f_of_mean": "the mean is f(μ) instead of the weighted mean of the transformed points",
+    "mean_not_subtracted": "the covariance is taken without subtracting the mean",
+    "outer_product_order": "yᵀy (a number) is used where the outer product y yᵀ (a matrix) belongs",
     "points_as_columns": "the points are columns instead of rows",
     "not_cholesky": "a square root other than the lower Cholesky factor is used",
+    # chapters 0, 2, 6 and 10
+    "n_not_sqrt_n": "the spread grows with n instead of √n",
+    "divides_by_sqrt_n": "σ is divided by √n instead of multiplied by it",
+    "off_by_one": "the number of steps is off by one",
+    "scalar_only": "it works for one number but not for an array of them",
+    "transpose_on_left": "the transpose is on the left-hand A: Aᵀ Σ A instead of A Σ Aᵀ",
+    "b_in_covariance": "the shift b is added to the covariance",
+    "b_forgotten": "the shift b is left out of the mean",
+    "missing_half": "the ½ of ½Δt² is missing",
+    "dt_not_dt2": "Δt is used where Δt² belongs",
+    "R_diagonal": "R keeps only its diagonal: the position-velocity cross terms are missing",
+    "state_order": "the state is ordered [px, vx, py, vy] instead of [px, py, vx, vy]",
+    "F_transposed": "F is transposed: its Δt entries are below the diagonal",
+    "R_not_mapped": "the odometry noise M is used as the process noise, not mapped through W (R = W M Wᵀ)",
+    "stale_mean": "every reading is linearized at the predicted mean μ̄ instead of the current one",
+    "bearing_not_wrapped": "the bearing innovation is not wrapped into (−π, π]",
+    "heading_not_wrapped": "the heading is not wrapped into (−π, π] after an update",
+    "gate_on_d_not_d2": "the gate mixes d and d²: d² compared with the gate, or d with gate²",
+    "no_gate": "readings the gate refuses are used",
+    "used_wrong": "the used flags do not say which readings were used",
+    "no_predict_when_blind": "the prediction is skipped when no reading is in view",
 }
 
 
@@ -132,24 +183,49 @@ def _as_array(x):
         return None
 
 
+def _wrong_entries(a: np.ndarray, e: np.ndarray) -> str:
+    """Where ``a`` differs from ``e``, when only a few of many entries do: " at [1, 0] and [1, 1]"."""
+    bad = np.argwhere(~np.isclose(a, e, rtol=RTOL, atol=ATOL))
+    if e.size == 1 or len(bad) == e.size or len(bad) > 4:
+        return ""
+    where = [f"[{', '.join(str(int(i)) for i in index)}]" for index in bad]
+    return " at " + (where[0] if len(where) == 1 else ", ".join(where[:-1]) + " and " + where[-1])
+
+
 def problem(expected, got, returns: tuple[str, ...]) -> str | None:
-    """What is wrong with ``got`` in a few words, or None when it matches ``expected``."""
+    """What is wrong with ``got`` in a few words, or None when it matches ``expected``.
+
+    Every output is judged: the wrong ones are named (with the entries that differ, when
+    only a few do) and, beside them, the outputs that are right.
+    """
     parts = _parts(got, returns)
     if parts is None:
         return f"it returned {_kind(got)}; expected {len(returns)} values ({', '.join(returns)})"
+    broken, wrong, right = [], [], []
     for name, e, g in zip(returns, _parts(expected, returns), parts, strict=True):
         e, a = np.asarray(e, dtype=float), _as_array(g)
         if a is None:
-            return f"{name} is not a number or an array of numbers"
-        if a.shape != e.shape and not (e.ndim == 0 and a.size == 1):
-            return f"{name} has shape {a.shape}; expected {e.shape if e.ndim else 'a single number'}"
-        if np.isnan(a).any():
-            return f"{name} contains NaN"
-        if np.isinf(a).any():
-            return f"{name} contains inf"
-        if not np.allclose(a.reshape(e.shape), e, rtol=RTOL, atol=ATOL):
-            return f"{name} has the wrong value"
-    return None
+            broken.append(f"{name} is not a number or an array of numbers")
+        elif a.shape != e.shape and not (e.ndim == 0 and a.size == 1):
+            broken.append(f"{name} has shape {a.shape}; expected {e.shape if e.ndim else 'a single number'}")
+        elif np.isnan(a).any():
+            broken.append(f"{name} contains NaN")
+        elif np.isinf(a).any():
+            broken.append(f"{name} contains inf")
+        elif not np.allclose(a.reshape(e.shape), e, rtol=RTOL, atol=ATOL):
+            wrong.append((name, _wrong_entries(a.reshape(e.shape), e)))
+        else:
+            right.append(name)
+    if len(wrong) > 1 and not any(where for _, where in wrong):
+        broken.append(" and ".join(name for name, _ in wrong) + " have wrong values")
+    else:
+        broken += [f"{name} has the wrong value{where}" for name, where in wrong]
+    if not broken:
+        return None
+    text = "; ".join(broken)
+    if right and len(returns) > 1:
+        text += f" ({' and '.join(right)} {'is' if len(right) == 1 else 'are'} right)"
+    return text
 
 
 def _same_outcome(mine, theirs, returns: tuple[str, ...]) -> bool:
@@ -178,10 +254,11 @@ def _kind(x) -> str:
     return f"one {type(x).__name__}"
 
 
-def show(x) -> str:
-    """A short, readable text for an input or output value."""
+def show(x, suppress_small: bool = True) -> str:
+    """A short, readable text for an input or output value (inputs: ``suppress_small=False``, so
+    that a tiny input such as ω = 1e-15 does not print as 0)."""
     if isinstance(x, Mapping):
-        return "{" + ", ".join(f"{k!r}: {show(p)}" for k, p in x.items()) + "}"
+        return "{" + ", ".join(f"{k!r}: {show(p, suppress_small)}" for k, p in x.items()) + "}"
     if x is None or isinstance(x, str):
         return repr(x)
     a = _as_array(x)
@@ -190,15 +267,15 @@ def show(x) -> str:
         return text if len(text) < 300 else text[:300] + " ..."
     if a.ndim == 0:
         return f"{float(a):.6g}"
-    return np.array2string(a, precision=6, suppress_small=True, separator=", ", max_line_width=100)
+    return np.array2string(a, precision=6, suppress_small=suppress_small, separator=", ", max_line_width=100)
 
 
-def _block(named: list[tuple[str, object]]) -> str:
+def _block(named: list[tuple[str, object]], suppress_small: bool = True) -> str:
     """``name = value`` lines, continuation lines of a matrix lined up under its first row."""
     width = max(len(name) for name, _ in named)
     lines = []
     for name, value in named:
-        text = show(value).replace("\n", "\n" + " " * (width + 7))
+        text = show(value, suppress_small).replace("\n", "\n" + " " * (width + 7))
         lines.append(f"    {name:<{width}} = {text}")
     return "\n".join(lines)
 
@@ -225,6 +302,50 @@ def random_covariance(rng: np.random.Generator, n: int, scale: float = 1.0) -> n
     return scale * (A @ A.T / n + 0.2 * np.eye(n))
 
 
+def _paired(outcome, expected, pair: Callable | None):
+    """The outcome with its value put into the reference's order by ``pair`` (when there is one)."""
+    if pair is None or outcome[0] == "raised":
+        return outcome
+    try:
+        return "returned", pair(expected, outcome[1])
+    except Exception:  # an answer ``pair`` cannot read is compared as it is
+        return outcome
+
+
+def _likely_mistake(student_fn, variants, cases, expected, number, returns, pair) -> Variant | None:
+    """The first known wrong version that reproduces the student's outcome on case ``number``.
+
+    It reproduces it when it gives the same values there, or the same error.  When the
+    student's function raised there in words of its own (another way to write the same
+    product), a variant that raises the same kind of error there and gives the student's
+    values on every case where the student's function returns also reproduces it.
+    """
+
+    def run(fn, i):
+        return _paired(_quietly(fn, cases[i]), expected[i], pair)
+
+    mine = run(student_fn, number)
+    for variant in variants:
+        if _same_outcome(run(variant.fn, number), mine, returns):
+            return variant
+    if mine[0] != "raised":
+        return None
+    student = [run(student_fn, i) for i in range(len(cases))]
+    returned = [i for i, outcome in enumerate(student) if outcome[0] == "returned"]
+    for variant in variants:
+        theirs = run(variant.fn, number)
+        if returned and theirs[0] == "raised" and type(theirs[1]) is type(mine[1]):
+            if all(_same_outcome(run(variant.fn, i), student[i], returns) for i in returned):
+                return variant
+    return None
+
+
+def _gap(expected, got, returns: tuple[str, ...]) -> float:
+    """The largest absolute difference between two answers that :func:`problem` finds equal."""
+    pairs = zip(_parts(expected, returns), _parts(got, returns), strict=True)
+    return max(float(np.max(np.abs(np.asarray(g, dtype=float).reshape(np.shape(e)) - e))) for e, g in pairs)
+
+
 def run_check(
     name: str,
     student_fn: Callable,
@@ -233,6 +354,9 @@ def run_check(
     variants: list[Variant],
     returns: tuple[str, ...],
     where: str,
+    *,
+    pair: Callable | None = None,
+    approximation: tuple[float, str, str] | None = None,
 ) -> CheckResult:
     """Run ``student_fn`` on every case and compare with ``reference``; name the likely mistake.
 
@@ -245,6 +369,7 @@ def run_check(
     reference : callable
         The package's function.
     cases : list of Case
+        The first is the chapter's worked example, where the chapter has one.
     variants : list of Variant
         Known wrong versions; the first that reproduces the student's answer on
         the first failing case names the mistake.
@@ -252,6 +377,14 @@ def run_check(
         Names of the returned values (one name: a single value, not a tuple).
     where : str
         The chapter's equation to compare with, e.g. ``"chapter 5, equations (1)-(5)"``.
+    pair : callable ``pair(expected, got) -> got``, optional
+        Puts an answer whose parts may come in any order (sigma points) into the
+        reference's order before it is compared.
+    approximation : (float, str, str), optional
+        ``(exact_to, mistake, hint)``: an answer that matches on every case within the
+        tolerance but differs from the reference by more than ``exact_to`` somewhere is
+        an approximation (a numerically differentiated Jacobian), not the formula asked
+        for; it fails with the key ``mistake`` of :data:`MISTAKES` and ``hint``.
 
     Returns
     -------
@@ -262,34 +395,51 @@ def run_check(
             f"student_fn must be your function itself, e.g. kf.check.{name}(my_{name}); got {student_fn!r}"
         )
     who = getattr(student_fn, "__name__", "your function")
-    for number, case in enumerate(cases, start=1):
+    expected = [case.call(reference) for case in cases]
+    answers = []
+    for number, case in enumerate(cases):
         outcome = _quietly(student_fn, case)
         if outcome[0] == "raised" and isinstance(outcome[1], NotImplementedError):
             headline = f"✎ Not yet: {who} raises NotImplementedError. Write its body, then run this cell again."
             return CheckResult(False, None, headline, headline)
-        expected = case.call(reference)
+        outcome = _paired(outcome, expected[number], pair)
         if outcome[0] == "raised":
             error = outcome[1]
             what = f"it raised {type(error).__name__}: {str(error).rstrip('.')}"
         else:
-            what = problem(expected, outcome[1], returns)
+            what = problem(expected[number], outcome[1], returns)
             if what is None:
+                answers.append(outcome[1])
                 continue
-        headline = f"✘ {who} is not right yet: on case {number} of {len(cases)} ({case.label}), {what}."
-        details = "inputs:\n" + _block(list(case.inputs.items()))
-        details += "\nexpected:\n" + _block(_named(expected, returns))
+        headline = f"✘ {who} is not right yet: on case {number + 1} of {len(cases)} ({case.label}), {what}."
+        details = "inputs:\n" + _block(list(case.inputs.items()), suppress_small=False)
+        details += "\nexpected:\n" + _block(_named(expected[number], returns))
         if outcome[0] == "raised":
             details += _where(outcome[1], student_fn)
         else:
             details += "\ngot:\n" + _block(_named(outcome[1], returns))
         mistake, hint = None, f"No known mistake gives this answer. Compare your code with {where}."
-        for variant in variants:
-            if _same_outcome(_quietly(variant.fn, case), outcome, returns):
-                mistake = variant.mistake
-                hint = f"Likely mistake: {MISTAKES[mistake]}. {variant.hint} See {where}."
-                break
+        variant = _likely_mistake(student_fn, variants, cases, expected, number, returns, pair)
+        if variant is not None:
+            mistake = variant.mistake
+            hint = f"Likely mistake: {MISTAKES[mistake]}. {variant.hint[:1].upper()}{variant.hint[1:]} See {where}."
         message = "\n".join([headline, details, hint])
         return CheckResult(False, mistake, message, headline, details, hint)
+    if approximation is not None:
+        exact_to, mistake, advice = approximation
+        gaps = [_gap(e, a, returns) for e, a in zip(expected, answers, strict=True)]
+        number = int(np.argmax(gaps))
+        if gaps[number] > exact_to:
+            headline = (
+                f"✘ {who} is not right yet: it agrees with kf.{name} only to {gaps[number]:.0e}, where the exact "
+                f"formula agrees to rounding (about 1e-15); the largest difference is on case {number + 1} of "
+                f"{len(cases)} ({cases[number].label})."
+            )
+            details = "inputs:\n" + _block(list(cases[number].inputs.items()), suppress_small=False)
+            details += "\nexpected:\n" + _block(_named(expected[number], returns))
+            details += "\ngot:\n" + _block(_named(answers[number], returns))
+            hint = f"Likely mistake: {MISTAKES[mistake]}. {advice} See {where}."
+            return CheckResult(False, mistake, "\n".join([headline, details, hint]), headline, details, hint)
     labels = list(dict.fromkeys(case.label.split(":")[0] for case in cases))  # each kind of case once, in order
     headline = f"✔ {who} matches kf.{name} on all {len(cases)} cases: {'; '.join(labels)}."
     return CheckResult(True, None, headline, headline)

@@ -21,9 +21,14 @@ def _random_kernel(rng) -> dict[int, float]:
     return {int(k): float(p) for k, p in zip(offsets, rng.dirichlet(np.ones(offsets.size)), strict=True)}
 
 
+def _normalised(p) -> np.ndarray:
+    return np.asarray(p) / np.sum(p)
+
+
 # ------------------------------------------------------------------ bayes_predict
-def _predict_with(belief, kernel, boundary, *, sign=1, ends=None, keep_at_wall=True):
-    """The predict sum with a knob for each mistake: sign of the move, which ends, what a wall does."""
+def _predict_with(belief, kernel, boundary, *, sign=1, ends=None, keep_at_wall=True, at_wall="end", overwrite=False):
+    """The predict sum with a knob for each mistake: sign of the move, which ends, what a wall does,
+    whether a contribution adds to its cell or overwrites it."""
     belief = np.asarray(belief, dtype=float)
     n = belief.size
     bel_bar = np.zeros(n)
@@ -34,9 +39,11 @@ def _predict_with(belief, kernel, boundary, *, sign=1, ends=None, keep_at_wall=T
                 end = end % n
             elif not 0 <= end < n and not keep_at_wall:
                 continue  # the mass that hits the wall is lost
+            elif not 0 <= end < n and at_wall == "start":
+                end = start  # the move fails and the robot stays where it was
             else:
                 end = min(max(end, 0), n - 1)
-            bel_bar[end] += p * belief[start]
+            bel_bar[end] = p * belief[start] + (0.0 if overwrite else bel_bar[end])
     return bel_bar
 
 
@@ -62,8 +69,8 @@ def bayes_predict(student_fn, seed: int = 0) -> CheckResult:
     """
     rng = np.random.default_rng(seed)
     cases = [
-        Case("the chapter's hallway: wall", belief=HALLWAY, kernel=MOVE_RIGHT, boundary="wall"),
-        Case("the chapter's hallway: ring", belief=HALLWAY, kernel=MOVE_RIGHT, boundary="wrap"),
+        Case("chapter 1's worked example: the hallway, wall", belief=HALLWAY, kernel=MOVE_RIGHT, boundary="wall"),
+        Case("chapter 1's worked example: the hallway, ring", belief=HALLWAY, kernel=MOVE_RIGHT, boundary="wrap"),
         Case("moving left: wall", belief=HALLWAY, kernel={-1: 0.7, 0: 0.3}, boundary="wall"),
         Case("n = 1: wall", belief=np.array([1.0]), kernel=MOVE_RIGHT, boundary="wall"),
         Case("n = 1: ring", belief=np.array([1.0]), kernel=MOVE_RIGHT, boundary="wrap"),
@@ -75,11 +82,19 @@ def bayes_predict(student_fn, seed: int = 0) -> CheckResult:
     SHIFT = "An offset k moves probability from cell i to cell i + k: the kernel {1: 0.8, 0: 0.2} moves it right."
     BOUNDARY = 'With boundary "wall" the robot stops in the end cell; with "wrap" cell n − 1 leads to cell 0.'
     WALL = "At a wall the robot stays in the end cell, so no probability leaves the hallway (the sum stays 1)."
+    RENORMALISED = (
+        "Normalising afterwards spreads the lost probability over every cell; at a wall it belongs in the end cell."
+    )
+    STOPS = "A move that would pass a wall stops in the end cell (as far as the robot gets), not where it started."
+    ADDS = "Several start cells can lead to the same end cell: add each contribution (+=), do not overwrite it."
     variants = [
         Variant("shift_wrong_way", lambda b, k, e: _predict_with(b, k, e, sign=-1), SHIFT),
         Variant("ignores_boundary", lambda b, k, e: _predict_with(b, k, e, ends="wall"), BOUNDARY),
         Variant("ignores_boundary", lambda b, k, e: _predict_with(b, k, e, ends="wrap"), BOUNDARY),
         Variant("leaks_at_wall", lambda b, k, e: _predict_with(b, k, e, keep_at_wall=False), WALL),
+        Variant("leaks_at_wall", lambda b, k, e: _normalised(_predict_with(b, k, e, keep_at_wall=False)), RENORMALISED),
+        Variant("wall_sends_back", lambda b, k, e: _predict_with(b, k, e, at_wall="start"), STOPS),
+        Variant("overwrites_not_adds", lambda b, k, e: _predict_with(b, k, e, overwrite=True), ADDS),
     ]
     return run_check("bayes_predict", student_fn, filters.bayes_predict, cases, variants, ("bel_bar",), PREDICT_WHERE)
 
@@ -106,7 +121,7 @@ def bayes_update(student_fn, seed: int = 0) -> CheckResult:
     rng = np.random.default_rng(seed)
     bel_bar = filters.bayes_predict(HALLWAY, MOVE_RIGHT)
     cases = [
-        Case("the chapter's door reading", belief=bel_bar, likelihood=DOOR),
+        Case("chapter 1's worked example: the door reading", belief=bel_bar, likelihood=DOOR),
         Case("n = 1", belief=np.array([1.0]), likelihood=np.array([0.3])),
         Case("a likelihood that is zero in some cells", belief=np.full(4, 0.25), likelihood=np.array([0, 0.5, 0, 0.1])),
         Case("a likelihood that sums to more than 1", belief=HALLWAY, likelihood=np.array([0.9, 0.8, 0.7])),
@@ -120,6 +135,16 @@ def bayes_update(student_fn, seed: int = 0) -> CheckResult:
             "not_normalised",
             lambda b, lik: np.asarray(lik) / np.sum(lik) * b,
             "Normalise the product p(z | x) bel̄(x), not the likelihood alone: the result must sum to 1.",
+        ),
+        Variant(
+            "not_normalised",
+            lambda b, lik: np.asarray(lik) * b / np.max(np.asarray(lik) * b),
+            "η makes the cells sum to 1: divide by the sum of the products, not by the largest.",
+        ),
+        Variant(
+            "adds_not_multiplies",
+            lambda b, lik: _normalised(np.asarray(lik) + b),
+            "Bayes' rule multiplies: bel(x) = η p(z | x) bel̄(x), cell by cell.",
         ),
     ]
     return run_check("bayes_update", student_fn, filters.bayes_update, cases, variants, ("bel",), UPDATE_WHERE)

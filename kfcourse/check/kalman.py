@@ -12,13 +12,34 @@ from ._core import Case, CheckResult, Variant, random_covariance, run_check
 
 
 # --------------------------------------------------------------------- kf_1d_step
-def _kf_1d_with(mu, var, u, z, a, b, c, R, Q, *, a2=None, innovation_sign=1.0):
-    """Equations (1)-(5) of chapter 3, with knobs for the mistakes."""
-    mu_bar = a * mu + b * u  # (1)
+def _kf_1d_with(
+    mu,
+    var,
+    u,
+    z,
+    a,
+    b,
+    c,
+    R,
+    Q,
+    *,
+    a2=None,
+    innovation_sign=1.0,
+    bu=True,
+    gain_c=True,
+    update_c=True,
+    gain_from="var_bar",
+    innovation_from="mu_bar",
+    update_from="var_bar",
+):
+    """Equations (1)-(5) of chapter 3, with knobs for the mistakes (the defaults are right)."""
+    mu_bar = a * mu + (b * u if bu else 0.0)  # (1)
     var_bar = (a * a if a2 is None else a2) * var + R  # (2)
-    K = c * var_bar / (c * c * var_bar + Q)  # (3)
-    mu_new = mu_bar + K * innovation_sign * (z - c * mu_bar)  # (4)
-    return mu_new, (1 - K * c) * var_bar  # (5)
+    seen = {"var_bar": var_bar, "var": var, "mu_bar": mu_bar, "mu": mu}
+    c_in_gain = c if gain_c else 1.0
+    K = c_in_gain * seen[gain_from] / (c_in_gain**2 * seen[gain_from] + Q)  # (3)
+    mu_new = mu_bar + K * innovation_sign * (z - c * seen[innovation_from])  # (4)
+    return mu_new, (1 - K * (c if update_c else 1.0)) * seen[update_from]  # (5)
 
 
 def kf_1d_step(student_fn, seed: int = 0) -> CheckResult:
@@ -41,8 +62,8 @@ def kf_1d_step(student_fn, seed: int = 0) -> CheckResult:
     defaults = {"a": 1.0, "b": 1.0, "c": 1.0, "R": 0.2, "Q": 0.1}
     cyc1 = filters.kf_1d_step(2.0, 0.4, 1.0, 3.6)
     cases = [
-        Case("the chapter's cycle 1", mu=2.0, var=0.4, u=1.0, z=3.6, **defaults),
-        Case("the chapter's cycle 2", mu=cyc1[0], var=cyc1[1], u=1.0, z=4.7, **defaults),
+        Case("chapter 3's worked example: cycle 1", mu=2.0, var=0.4, u=1.0, z=3.6, **defaults),
+        Case("chapter 3's worked example: cycle 2", mu=cyc1[0], var=cyc1[1], u=1.0, z=4.7, **defaults),
         Case("a perfectly known start, var = 0", mu=0.5, var=0.0, u=-1.0, z=0.2, **defaults),
         Case("a ≠ 1, c ≠ 1", mu=1.0, var=0.5, u=0.3, z=2.0, a=0.9, b=2.0, c=1.5, R=0.05, Q=0.3),
     ]
@@ -80,6 +101,51 @@ def kf_1d_step(student_fn, seed: int = 0) -> CheckResult:
             lambda mu, var, u, z, a, b, c, R, Q: _kf_1d_with(mu, var, u, z, a, b, c, R, Q, a2=a),
             "equation (2) scales the variance by a², σ̄² = a²σ² + R (a variance scales by the square).",
         ),
+        Variant(
+            "forgot_R",
+            lambda mu, var, u, z, a, b, c, R, Q: _kf_1d_with(mu, var, u, z, a, b, c, 0.0, Q),
+            "the predict step (2) adds the motion noise: σ̄² = a²σ² + R.",
+        ),
+        Variant(
+            "forgot_Q",
+            lambda mu, var, u, z, a, b, c, R, Q: _kf_1d_with(mu, var, u, z, a, b, c, R, 0.0),
+            "the gain (3) weighs the prediction against the sensor's noise: K = cσ̄² / (c²σ̄² + Q).",
+        ),
+        Variant(
+            "forgot_control",
+            lambda mu, var, u, z, a, b, c, R, Q: _kf_1d_with(mu, var, u, z, a, b, c, R, Q, bu=False),
+            "the predicted mean (1) moves with the control: μ̄ = aμ + bu.",
+        ),
+        Variant(
+            "prior_not_predicted",
+            lambda *args: _kf_1d_with(*args, gain_from="var"),
+            "the gain (3) is built from the predicted variance σ̄², not from σ².",
+        ),
+        Variant(
+            "prior_not_predicted",
+            lambda *args: _kf_1d_with(*args, innovation_from="mu"),
+            "the innovation (4) compares the reading with the predicted reading: z − c μ̄, not z − c μ.",
+        ),
+        Variant(
+            "prior_not_predicted",
+            lambda *args: _kf_1d_with(*args, update_from="var"),
+            "the update (5) shrinks the predicted variance: σ² = (1 − Kc) σ̄².",
+        ),
+        Variant(
+            "c_left_out",
+            lambda *args: _kf_1d_with(*args, gain_c=False),
+            "K = σ̄² / (σ̄² + Q) is the gain for c = 1; in general (3) is K = cσ̄² / (c²σ̄² + Q).",
+        ),
+        Variant(
+            "c_left_out",
+            lambda *args: _kf_1d_with(*args, update_c=False),
+            "the update (5) is σ² = (1 − Kc) σ̄²; (1 − K) is its c = 1 form.",
+        ),
+        Variant(
+            "c_left_out",
+            lambda *args: _kf_1d_with(*args, gain_c=False, update_c=False),
+            "K = σ̄² / (σ̄² + Q) and (1 − K) are the c = 1 forms of (3) and (5): keep c in both.",
+        ),
     ]
     return run_check("kf_1d_step", student_fn, filters.kf_1d_step, cases, variants, ("mu", "var"), ch3)
 
@@ -108,7 +174,13 @@ def fuse(student_fn, seed: int = 0) -> CheckResult:
     """
     rng = np.random.default_rng(seed)
     cases = [
-        Case("chapter 3's cycle 1: prediction and reading", mu1=3.0, var1=0.6, mu2=3.6, var2=0.1),
+        Case(
+            "chapter 4's worked example: prediction N(3, 0.6), reading N(3.6, 0.1)",
+            mu1=3.0,
+            var1=0.6,
+            mu2=3.6,
+            var2=0.1,
+        ),
         Case("equal variances", mu1=0.0, var1=0.3, mu2=1.0, var2=0.3),
         Case("a very sure and a very unsure estimate", mu1=-2.0, var1=1e-4, mu2=5.0, var2=50.0),
     ]
@@ -130,6 +202,11 @@ def fuse(student_fn, seed: int = 0) -> CheckResult:
             "var1 and var2 are already variances: the precisions are 1/var1 and 1/var2, not 1/var1².",
         ),
         Variant(
+            "wrong_weights",
+            lambda m1, v1, m2, v2: ((m1 + m2) / 2, 1 / (1 / v1 + 1 / v2)),
+            "A plain average ignores how sure each estimate is: weight each mean by its precision 1/σ².",
+        ),
+        Variant(
             "adds_variances",
             lambda m1, v1, m2, v2: ((v2 * m1 + v1 * m2) / (v1 + v2), v1 + v2),
             "Fusing two estimates adds their precisions, so the fused variance is smaller than both; "
@@ -140,14 +217,23 @@ def fuse(student_fn, seed: int = 0) -> CheckResult:
 
 
 # ------------------------------------------------------------------------ kf_step
-def _kf_step_with(mu, Sig, u, z, F, B, H, R, Q, *, transpose=True, innovation_sign=1.0, correction_sign=-1.0):
-    """Equations (1)-(5) of chapter 5, with knobs for the mistakes."""
-    mu_bar = F @ mu + B @ u  # (1)
-    Sig_bar = F @ Sig @ (F.T if transpose else F) + R  # (2)
-    S = H @ Sig_bar @ H.T + Q  # (3)
-    K = Sig_bar @ H.T @ np.linalg.inv(S)  # (3)
-    mu_new = mu_bar + K @ (innovation_sign * (z - H @ mu_bar))  # (4)
-    return mu_new, (np.eye(mu.size) + correction_sign * K @ H) @ Sig_bar  # (5)
+def _kf_step_with(mu, Sig, u, z, F, B, H, R, Q, **mistake):
+    """Equations (1)-(5) of chapter 5; a keyword of :func:`kf_step`'s variants makes one mistake."""
+    wrong = mistake.get
+    mu_bar = (mu @ F if wrong("row_vector") else F @ mu) + (0.0 if wrong("no_Bu") else B @ u)  # (1)
+    if wrong("no_FT"):
+        FSF = F @ Sig @ F
+    else:
+        FSF = F.T @ Sig @ F if wrong("FT_left") else F @ Sig @ F.T
+    Sig_bar = FSF + (0.0 if wrong("no_R") else R)  # (2)
+    S = H @ (Sig if wrong("S_from") else Sig_bar) @ H.T + (0.0 if wrong("no_Q") else Q)  # (3)
+    S_inv = {"none": S, "entries": 1 / S}[wrong("inverse")] if wrong("inverse") else np.linalg.inv(S)
+    K = (Sig if wrong("K_from") else Sig_bar) @ (H if wrong("no_HT") else H.T) @ S_inv  # (3)
+    innovation = z - H @ (mu if wrong("innovation_from") else mu_bar)
+    mu_new = mu_bar + K @ (-innovation if wrong("innovation_sign") else innovation)  # (4)
+    I_KH = np.eye(mu.size) + (K @ H if wrong("correction_sign") else -K @ H)
+    Sig_from = Sig if wrong("update_from") else Sig_bar
+    return mu_new, (Sig_from @ I_KH if wrong("right_side") else I_KH @ Sig_from)  # (5)
 
 
 def _kf_case(rng, label: str, n: int, k: int, m: int) -> Case:
@@ -165,11 +251,15 @@ def _kf_case(rng, label: str, n: int, k: int, m: int) -> Case:
     )
 
 
+def _kf_variant(mistake: str, knob: str, hint: str, value=True) -> Variant:
+    return Variant(mistake, lambda *args: _kf_step_with(*args, **{knob: value}), hint)
+
+
 def kf_step(student_fn, seed: int = 0) -> CheckResult:
     """Check your ``kf_step(mu, Sig, u, z, F, B, H, R, Q)`` against :func:`kfcourse.kf_step`.
 
-    ``u``, ``B`` and ``z`` are always arrays (no control is ``B`` of zeros).
-    Introduced in chapter 5.
+    ``u``, ``B`` and ``z`` are always arrays (no control is ``B`` of zeros).  The first case is
+    chapter 5's worked example.  Introduced in chapter 5.
 
     Parameters
     ----------
@@ -183,10 +273,9 @@ def kf_step(student_fn, seed: int = 0) -> CheckResult:
     CheckResult
     """
     rng = np.random.default_rng(seed)
-    cases = [_kf_case(rng, "n = k = 2, so R and Q have one shape", 2, 2, 1) for _ in range(2)]
-    cases.append(
+    cases = [
         Case(
-            "the chapter's constant-velocity example",
+            "chapter 5's worked example: constant velocity, z = 1.2",
             mu=np.array([0.0, 1.0]),
             Sig=np.eye(2),
             u=np.zeros(1),
@@ -197,7 +286,8 @@ def kf_step(student_fn, seed: int = 0) -> CheckResult:
             R=0.01 * np.eye(2),
             Q=np.array([[0.5]]),
         )
-    )
+    ]
+    cases += [_kf_case(rng, "n = k = 2, so R and Q have one shape", 2, 2, 1) for _ in range(2)]
     cases.append(_kf_case(rng, "n = 1 (every matrix 1 x 1)", 1, 1, 1))
     for _ in range(8):
         n = int(rng.integers(2, 5))
@@ -211,20 +301,34 @@ def kf_step(student_fn, seed: int = 0) -> CheckResult:
             "R, the process noise (n x n), is added in the predict step (2), Σ̄ = FΣFᵀ + R; Q, the "
             "measurement noise (k x k), in the innovation covariance (3), S = HΣ̄Hᵀ + Q.",
         ),
-        Variant(
-            "missing_transpose",
-            lambda *args: _kf_step_with(*args, transpose=False),
-            "equation (2) is Σ̄ = F Σ Fᵀ + R, with F on both sides and the transpose on the right.",
+        _kf_variant("missing_transpose", "no_FT", "equation (2) is Σ̄ = F Σ Fᵀ + R, with the transpose on the right."),
+        _kf_variant("missing_transpose", "FT_left", "equation (2) is Σ̄ = F Σ Fᵀ + R: the transpose is on the right."),
+        _kf_variant("missing_transpose", "no_HT", "the gain (3) is K = Σ̄ Hᵀ S⁻¹, with H transposed."),
+        _kf_variant(
+            "sign_flip", "innovation_sign", "the innovation in (4) is z − H μ̄ (the reading minus the prediction)."
         ),
-        Variant(
-            "sign_flip",
-            lambda *args: _kf_step_with(*args, innovation_sign=-1.0),
-            "the innovation in (4) is z − H μ̄ (the reading minus the predicted reading).",
+        _kf_variant(
+            "sign_flip", "correction_sign", "equation (5) is Σ = (I − K H) Σ̄: the update shrinks the covariance."
         ),
+        _kf_variant("forgot_R", "no_R", "the predict step (2) adds the process noise: Σ̄ = F Σ Fᵀ + R."),
+        _kf_variant("forgot_Q", "no_Q", "the innovation covariance (3) adds the sensor's noise: S = H Σ̄ Hᵀ + Q."),
+        _kf_variant("forgot_control", "no_Bu", "the predicted mean (1) moves with the control: μ̄ = F μ + B u."),
+        _kf_variant("prior_not_predicted", "K_from", "the gain (3) is built from the predicted Σ̄: K = Σ̄ Hᵀ S⁻¹."),
         Variant(
-            "sign_flip",
-            lambda *args: _kf_step_with(*args, correction_sign=1.0),
-            "equation (5) is Σ = (I − K H) Σ̄: the update shrinks the covariance.",
+            "prior_not_predicted",
+            lambda *args: _kf_step_with(*args, K_from=True, S_from=True),
+            "the gain (3) is built from the predicted Σ̄, in K and in S: K = Σ̄ Hᵀ (H Σ̄ Hᵀ + Q)⁻¹.",
         ),
+        _kf_variant("prior_not_predicted", "innovation_from", "the innovation (4) is z − H μ̄, with the predicted μ̄."),
+        _kf_variant("prior_not_predicted", "update_from", "the update (5) shrinks the predicted Σ̄: Σ = (I − K H) Σ̄."),
+        _kf_variant("no_inverse", "inverse", "the gain (3) divides by S: K = Σ̄ Hᵀ S⁻¹, with np.linalg.inv(S).", "none"),
+        _kf_variant(
+            "elementwise_inverse",
+            "inverse",
+            "1 / S inverts each entry, which is S⁻¹ only when S is 1 x 1: use np.linalg.inv(S) in (3).",
+            "entries",
+        ),
+        _kf_variant("wrong_order", "right_side", "equation (5) is Σ = (I − K H) Σ̄, with (I − K H) on the left."),
+        _kf_variant("wrong_order", "row_vector", "equation (1) is μ̄ = F μ + B u, with F on the left of μ."),
     ]
     return run_check("kf_step", student_fn, filters.kf_step, cases, variants, ("mu", "Sig"), ch5)

@@ -39,18 +39,37 @@ def _sensor_cases(rng) -> list[Case]:
 
 
 # ------------------------------------------------------------------ range_bearing
-def _range_bearing_with(state, landmark, *, wrap=True, flip=False, atan2=True):
-    """h of chapter 7, with knobs for the mistakes."""
+def _range_bearing_with(state, landmark, *, wrap=True, flip=False, atan2=True, **mistake):
+    """h of chapter 7, with knobs for the mistakes (the defaults are right)."""
+    wrong = mistake.get
     dx, dy = landmark[0] - state[0], landmark[1] - state[1]
-    angle = math.atan2(dy, dx) if atan2 else math.atan(dy / dx)
-    phi = state[2] - angle if flip else angle - state[2]
-    return np.array([math.hypot(dx, dy), _wrap(phi) if wrap else phi])
+    if wrong("robot_minus_landmark"):
+        dx, dy = -dx, -dy
+    if not atan2:
+        angle = math.atan(dy / dx)
+    else:
+        angle = math.atan2(dx, dy) if wrong("swap_atan2") else math.atan2(dy, dx)
+    if wrong("degrees_first"):
+        angle = math.degrees(angle)
+    phi = state[2] - angle if flip else angle + (state[2] if wrong("plus_theta") else -state[2])
+    if wrong("mod_2pi"):
+        phi = phi % (2 * np.pi)
+    elif wrap:
+        phi = _wrap(phi)
+    if wrong("degrees"):
+        phi = math.degrees(phi)
+    r = dx * dx + dy * dy if wrong("q") else math.hypot(dx, dy)
+    return np.array([phi, r] if wrong("swapped") else [r, phi])
+
+
+def _rb_variant(mistake: str, hint: str, **knobs) -> Variant:
+    return Variant(mistake, lambda s, m: _range_bearing_with(s, m, **knobs), hint)
 
 
 def range_bearing(student_fn, seed: int = 0) -> CheckResult:
     """Check your ``range_bearing(state, landmark)`` against :func:`kfcourse.range_bearing`.
 
-    Introduced in chapter 7.
+    The first case is chapter 7's worked example.  Introduced in chapter 7.
 
     Parameters
     ----------
@@ -64,40 +83,81 @@ def range_bearing(student_fn, seed: int = 0) -> CheckResult:
     """
     cases = _sensor_cases(np.random.default_rng(seed))
     where = "chapter 7, the range-bearing model: r = √q, φ = atan2(Δy, Δx) − θ, wrapped into (−π, π]"
+    WRAP = "atan2(Δy, Δx) − θ can leave (−π, π] (up to ±2π); wrap it, e.g. with kf.wrap_angle."
+    DEGREES = "NumPy's angles are radians: leave atan2's answer as it is, without np.degrees."
     variants = [
-        Variant(
-            "unwrapped_angle",
-            lambda s, m: _range_bearing_with(s, m, wrap=False),
-            "atan2(Δy, Δx) − θ can leave (−π, π] (up to ±2π); wrap it, e.g. with kf.wrap_angle.",
+        _rb_variant("unwrapped_angle", WRAP, wrap=False),
+        _rb_variant(
+            "unwrapped_angle", "% 2π wraps into [0, 2π); the bearing lives in (−π, π] (kf.wrap_angle).", mod_2pi=True
         ),
-        Variant(
+        _rb_variant(
             "sign_flip",
-            lambda s, m: _range_bearing_with(s, m, flip=True),
             "The bearing is the landmark's direction minus the heading, not the other way round.",
+            flip=True,
         ),
-        Variant(
+        _rb_variant(
+            "heading_sign", "The bearing is measured from the heading: atan2(Δy, Δx) − θ, minus θ.", plus_theta=True
+        ),
+        _rb_variant(
             "atan_not_atan2",
-            lambda s, m: _range_bearing_with(s, m, atan2=False),
             "atan(Δy/Δx) cannot tell a landmark ahead from one behind; atan2(Δy, Δx) can.",
+            atan2=False,
         ),
+        _rb_variant(
+            "atan2_arguments_swapped", "np.arctan2(y, x) takes the y offset first: atan2(Δy, Δx).", swap_atan2=True
+        ),
+        _rb_variant(
+            "robot_minus_landmark",
+            "Δx = m_x − x and Δy = m_y − y point from the robot to the landmark; "
+            "the other way round the bearing is off by π.",
+            robot_minus_landmark=True,
+        ),
+        _rb_variant("degrees", DEGREES, degrees=True),
+        _rb_variant("degrees", DEGREES, degrees=True, wrap=False),
+        _rb_variant("degrees", DEGREES, degrees_first=True),
+        _rb_variant("degrees", DEGREES, degrees_first=True, wrap=False),
+        _rb_variant("q_not_sqrt_q", "The range is the distance √q = √(Δx² + Δy²), not its square q.", q=True),
+        _rb_variant("outputs_swapped", "Return [r, φ]: the range first, then the bearing.", swapped=True),
     ]
     return run_check("range_bearing", student_fn, models.range_bearing, cases, variants, ("z",), where)
 
 
 # --------------------------------------------------------- range_bearing_jacobian
-def _jacobian_with(state, landmark, *, d_sign=1.0, theta_entry=-1.0, q_rows=False):
-    """H of chapter 7, with knobs for the mistakes."""
+def _jacobian_with(state, landmark, *, d_sign=1.0, theta_entry=-1.0, **mistake):
+    """H of chapter 7, with knobs for the mistakes (the defaults are right)."""
+    wrong = mistake.get
     dx, dy = d_sign * (landmark[0] - state[0]), d_sign * (landmark[1] - state[1])
     q = dx * dx + dy * dy
     r = math.sqrt(q)
-    range_by, bearing_by = (q, r) if q_rows else (r, q)
-    return np.array([[-dx / range_by, -dy / range_by, 0.0], [dy / bearing_by, -dx / bearing_by, theta_entry]])
+    range_row = np.array([-dx, -dy]) / (q if wrong("q_in_range_row") else r)
+    bearing_row = np.array([dy, -dx]) / (r if wrong("r_in_bearing_row") else q)
+    if wrong("swap_in_range_row"):
+        range_row = range_row[::-1]
+    if wrong("swap_in_bearing_row"):
+        bearing_row = np.array([dx, -dy]) / q
+    range_row = -range_row if wrong("range_sign") else range_row
+    bearing_row = -bearing_row if wrong("bearing_sign") else bearing_row
+    return np.array(
+        [[*range_row, 0.0], [*bearing_row, -theta_entry if wrong("bearing_sign") == "row" else theta_entry]]
+    )
+
+
+def _jacobian_variant(mistake: str, hint: str, **knobs) -> Variant:
+    return Variant(mistake, lambda s, m: _jacobian_with(s, m, **knobs), hint)
+
+
+def _numeric_jacobian(state, landmark):
+    """The Jacobian by central differences, as kf.numeric_jacobian gives it (no derivation)."""
+    return models.numeric_jacobian(lambda s: models.range_bearing(s, landmark), state)
 
 
 def range_bearing_jacobian(student_fn, seed: int = 0) -> CheckResult:
     """Check your ``range_bearing_jacobian(state, landmark)`` against :func:`kfcourse.range_bearing_jacobian`.
 
-    Introduced in chapter 7.
+    The first case is chapter 7's worked example.  The exercise asks for H derived by hand: a
+    Jacobian differentiated numerically (``kf.numeric_jacobian`` or finite differences of your
+    own) agrees within the tolerance but only to about 1e-10, where the formula agrees to
+    rounding, and it is told so.  Introduced in chapter 7.
 
     Parameters
     ----------
@@ -114,23 +174,61 @@ def range_bearing_jacobian(student_fn, seed: int = 0) -> CheckResult:
         "chapter 7, the Jacobian H: with Δx = m_x − x, Δy = m_y − y, q = Δx² + Δy², "
         "H = [[−Δx/√q, −Δy/√q, 0], [Δy/q, −Δx/q, −1]]"
     )
+    BEARING = (
+        "The bearing row is the derivative of atan2(Δy, Δx): ∂φ/∂x = Δy/q and ∂φ/∂y = −Δx/q (a robot that moves "
+        "up sees the landmark turn clockwise). Work it out from d atan(t)/dt = 1/(1 + t²)."
+    )
+    NUMERIC = (
+        "kf.numeric_jacobian is the tool that checks a Jacobian; the exercise asks for the Jacobian itself: derive "
+        "each entry of H by hand from h and write the formula."
+    )
     variants = [
-        Variant(
-            "sign_flip",
-            lambda s, m: _jacobian_with(s, m, d_sign=-1.0),
+        _jacobian_variant("bearing_row_sign", BEARING, bearing_sign=True),
+        _jacobian_variant("bearing_row_sign", BEARING + " And ∂φ/∂θ = −1.", bearing_sign="row"),
+        _jacobian_variant(
+            "range_row_sign",
+            "Moving the robot toward the landmark shortens the range, so ∂r/∂x = −Δx/√q and ∂r/∂y = −Δy/√q.",
+            range_sign=True,
+        ),
+        _jacobian_variant(
+            "robot_minus_landmark",
             "Δx and Δy point from the robot to the landmark (landmark minus robot); moving the robot "
             "toward the landmark shortens the range, so ∂r/∂x = −Δx/√q.",
+            d_sign=-1.0,
         ),
-        Variant(
+        _jacobian_variant(
             "sign_flip",
-            lambda s, m: _jacobian_with(s, m, theta_entry=1.0),
             "The bearing is atan2(Δy, Δx) − θ, so ∂φ/∂θ = −1: turning left moves the landmark right.",
+            theta_entry=1.0,
         ),
-        Variant(
+        _jacobian_variant(
+            "missing_theta",
+            "The bearing is atan2(Δy, Δx) − θ, so ∂φ/∂θ = −1: turning left moves the landmark right.",
+            theta_entry=0.0,
+        ),
+        _jacobian_variant(
             "q_not_sqrt_q",
-            lambda s, m: _jacobian_with(s, m, q_rows=True),
             "The range row divides by √q (the range), the bearing row by q (the range squared).",
+            q_in_range_row=True,
+            r_in_bearing_row=True,
         ),
+        _jacobian_variant(
+            "q_not_sqrt_q", "The range row divides by √q, the range: ∂r/∂x = −Δx/√q.", q_in_range_row=True
+        ),
+        _jacobian_variant(
+            "q_not_sqrt_q", "The bearing row divides by q, the range squared: ∂φ/∂x = Δy/q.", r_in_bearing_row=True
+        ),
+        _jacobian_variant(
+            "dx_dy_swapped",
+            "∂r/∂x goes with Δx and ∂r/∂y with Δy; in the bearing row, ∂φ/∂x = Δy/q and ∂φ/∂y = −Δx/q.",
+            swap_in_range_row=True,
+            swap_in_bearing_row=True,
+        ),
+        _jacobian_variant(
+            "dx_dy_swapped", "The range row is −(Δx, Δy)/√q: ∂r/∂x goes with Δx.", swap_in_range_row=True
+        ),
+        _jacobian_variant("dx_dy_swapped", BEARING, swap_in_bearing_row=True),
+        Variant("numeric_not_derived", _numeric_jacobian, NUMERIC),
     ]
     return run_check(
         "range_bearing_jacobian",
@@ -139,21 +237,34 @@ def range_bearing_jacobian(student_fn, seed: int = 0) -> CheckResult:
         cases,
         variants,
         ("H",),
-        where + " (kf.numeric_jacobian shows which entries are wrong)",
+        where + " (check each entry against kf.numeric_jacobian while you derive it)",
+        approximation=(1e-12, "numeric_not_derived", NUMERIC),
     )
 
 
 # ----------------------------------------------------------------------- unicycle
-def _unicycle_with(state, u, dt, *, limit=True, wrap=True, euler=False, y_sign=1.0):
-    """The unicycle model of chapter 8, with knobs for the mistakes."""
+def _unicycle_with(state, u, dt, *, limit=True, wrap=True, euler=False, y_sign=1.0, sin=np.sin, cos=np.cos, **mistake):
+    """The unicycle model of chapter 8 with the arc formula and an ``ω == 0`` branch, and knobs for the mistakes.
+
+    Right only where ω is 0 or not tiny: at ω = 1e-15 the arc formula loses its digits (chapter 8).
+    """
+    wrong = mistake.get
     x, y, theta = state
     V, w = u
+    distance = V if wrong("no_dt_in_distance") else V * dt
+    turn = w if wrong("no_dt_in_heading") else w * dt
+    arc_turn = w if wrong("no_dt_in_arc") else w * dt
+    swap = wrong("swap_sin_cos")  # True: everywhere; "arc" or "line": only there
+    line_sin, line_cos = (cos, sin) if swap in (True, "line") else (sin, cos)
+    arc_sin, arc_cos = (cos, sin) if swap in (True, "arc") else (sin, cos)
     if euler or (limit and w == 0):  # the straight line
-        x_new, y_new = x + V * dt * np.cos(theta), y + V * dt * np.sin(theta)
+        x_new, y_new = x + distance * line_cos(theta), y + distance * line_sin(theta)
     else:  # the arc
-        x_new = x + V / w * (np.sin(theta + w * dt) - np.sin(theta))
-        y_new = y + y_sign * V / w * (np.cos(theta) - np.cos(theta + w * dt))
-    theta_new = theta + w * dt
+        x_new = x + V / w * (arc_sin(theta + arc_turn) - arc_sin(theta))
+        y_new = y + y_sign * V / w * (arc_cos(theta) - arc_cos(theta + arc_turn))
+        if wrong("swap_brackets"):  # x' with y's bracket and y' with x's
+            x_new, y_new = x + (y_new - y), y + (x_new - x)
+    theta_new = theta + turn
     return np.array([x_new, y_new, _wrap(theta_new) if wrap else theta_new])
 
 
@@ -164,10 +275,16 @@ def _unicycle_in_floats(state, u, dt):
     return np.array([x + V / w * (math.sin(theta + w * dt) - math.sin(theta)), y, theta])
 
 
+def _unicycle_variant(mistake: str, hint: str, **knobs) -> Variant:
+    return Variant(mistake, lambda s, u, dt: _unicycle_with(s, u, dt, **knobs), hint)
+
+
 def unicycle(student_fn, seed: int = 0) -> CheckResult:
     """Check your ``unicycle(state, u, dt)`` (one pose) against :func:`kfcourse.unicycle`.
 
-    Introduced in chapter 8.
+    The first case is chapter 8's example (θ = 0, V = 0.5 m/s, ω = 0, Δt = 1 s); one case
+    drives with ω = 1e-15, where chapter 8 shows the arc formula 2 cm off: a test for
+    exactly ω == 0 does not protect it.  Introduced in chapter 8.
 
     Parameters
     ----------
@@ -182,48 +299,74 @@ def unicycle(student_fn, seed: int = 0) -> CheckResult:
     rng = np.random.default_rng(seed)
     origin = np.zeros(3)
     cases = [
-        Case("ω = 0: chapter 8's example", state=origin, u=np.array([0.5, 0.0]), dt=1.0),
+        Case("chapter 8's worked example: θ = 0, V = 0.5, ω = 0, Δt = 1", state=origin, u=np.array([0.5, 0.0]), dt=1.0),
         Case("ω = 0: a straight line at θ = 1", state=np.array([1.0, -2.0, 1.0]), u=np.array([2.0, 0.0]), dt=0.5),
         Case("turning on the spot", state=np.array([1.0, 1.0, 0.5]), u=np.array([0.0, 1.0]), dt=0.5),
         Case("a quarter circle", state=origin, u=np.array([np.pi / 2, np.pi / 2]), dt=1.0),
         Case("heading crossing +π", state=np.array([0.0, 0.0, 3.0]), u=np.array([1.0, 0.5]), dt=1.0),
         Case("heading crossing −π", state=np.array([2.0, 1.0, -3.0]), u=np.array([0.5, -0.4]), dt=1.0),
+        Case(
+            "ω = 1e-15: chapter 8's nearly straight line",
+            state=np.array([0.0, 0.0, 0.3]),
+            u=np.array([0.5, 1e-15]),
+            dt=1.0,
+        ),
     ]
-    while len(cases) < 16:
+    while len(cases) < 17:
         state = np.array([*rng.uniform(-5, 5, 2), rng.uniform(-np.pi, np.pi)])
         u, dt = np.array([rng.uniform(-1, 2), rng.uniform(-1.5, 1.5)]), float(rng.uniform(0.05, 1.0))
         if abs(abs(models.unicycle(state, u, dt)[2]) - np.pi) > 1e-3:  # stay clear of the ±π seam
             cases.append(Case("random poses and controls", state=state, u=u, dt=dt))
     where = (
         "chapter 8, the unicycle model: x' = x + V/ω (sin(θ + ωΔt) − sin θ), y' = y + V/ω (cos θ − cos(θ + ωΔt)), "
-        "θ' = θ + ωΔt wrapped into (−π, π]; at ω = 0 the straight line x' = x + VΔt cos θ, y' = y + VΔt sin θ"
+        "θ' = θ + ωΔt wrapped into (−π, π]; for ω at or near 0 the straight line x' = x + VΔt cos θ, "
+        "y' = y + VΔt sin θ"
     )
+    LIMIT = "At ω = 0, V/ω is a division by zero: handle ω = 0 (or |ω| tiny) with the straight-line limit."
+    TINY = (
+        "Near ω = 0 the arc formula loses its digits (chapter 8 shows it 2 cm off at ω = 1e-15): drive the straight "
+        "line whenever |ω| is tiny, e.g. abs(omega) < 1e-9, not only when omega == 0."
+    )
+    SIN_COS = "x moves with cos θ and y with sin θ: heading θ = 0 drives along +x."
     variants = [
-        Variant(
-            "divides_by_omega",
-            lambda s, u, dt: _unicycle_with(s, u, dt, limit=False),
-            "At ω = 0, V/ω is a division by zero: handle ω = 0 (or |ω| tiny) with the straight-line limit.",
+        _unicycle_variant("exact_zero_test", TINY),  # before divides_by_omega, which gives the same at ω = 1e-15
+        _unicycle_variant("exact_zero_test", TINY, sin=math.sin, cos=math.cos),
+        _unicycle_variant("divides_by_omega", LIMIT, limit=False),
+        Variant("divides_by_omega", _unicycle_in_floats, LIMIT),
+        _unicycle_variant(
+            "unwrapped_angle", "θ + ωΔt can leave (−π, π]; wrap it, e.g. with kf.wrap_angle.", wrap=False
         ),
-        Variant(
-            "divides_by_omega",
-            _unicycle_in_floats,
-            "At ω = 0, V/ω is a division by zero: handle ω = 0 (or |ω| tiny) with the straight-line limit.",
-        ),
-        Variant(
-            "unwrapped_angle",
-            lambda s, u, dt: _unicycle_with(s, u, dt, wrap=False),
-            "θ + ωΔt can leave (−π, π]; wrap it, e.g. with kf.wrap_angle.",
-        ),
-        Variant(
+        _unicycle_variant(
             "sign_flip",
-            lambda s, u, dt: _unicycle_with(s, u, dt, y_sign=-1.0),
             "Check the order in y': cos θ − cos(θ + ωΔt), so that turning left (ω > 0) from θ = 0 moves "
             "the robot to +y.",
+            y_sign=-1.0,
         ),
-        Variant(
+        _unicycle_variant(
             "euler_step",
-            lambda s, u, dt: _unicycle_with(s, u, dt, euler=True),
             "While ω ≠ 0 the robot drives along an arc; the straight line is only the ω = 0 limit.",
+            euler=True,
+        ),
+        _unicycle_variant("sin_cos_swapped", SIN_COS, swap_sin_cos=True),
+        _unicycle_variant("sin_cos_swapped", SIN_COS + " (In the arc too: x' has the sines.)", swap_sin_cos="arc"),
+        _unicycle_variant("sin_cos_swapped", SIN_COS, swap_sin_cos="line"),
+        _unicycle_variant("sin_cos_swapped", SIN_COS + " In the arc, x' has the sines.", swap_brackets=True),
+        _unicycle_variant(
+            "sin_cos_swapped", SIN_COS + " In the arc, x' has the sines.", swap_brackets=True, swap_sin_cos="line"
+        ),
+        _unicycle_variant(
+            "heading_without_dt", "ω is a rate: over a step the heading turns by ωΔt.", no_dt_in_heading=True
+        ),
+        _unicycle_variant(
+            "heading_without_dt",
+            "ω is a rate: over a step the heading turns by ωΔt, in θ' and in the arc's sin(θ + ωΔt).",
+            no_dt_in_heading=True,
+            no_dt_in_arc=True,
+        ),
+        _unicycle_variant(
+            "speed_not_distance",
+            "V is a speed: the straight line covers VΔt metres, x' = x + VΔt cos θ.",
+            no_dt_in_distance=True,
         ),
     ]
     return run_check("unicycle", student_fn, models.unicycle, cases, variants, ("state",), where)

@@ -7,6 +7,7 @@ from .ekf import ekf_predict, ekf_update
 from .gaussian import add_gaussians, affine_gaussian, ellipse_axes, fuse, gaussian_pdf, mass_inside, mvn_pdf
 from .kalman import kf_gain, kf_predict, kf_step, kf_update
 from .kalman_1d import KF1DCycle, kf_1d_cycle, kf_1d_gain, kf_1d_predict, kf_1d_step, kf_1d_update, steady_state_1d
+from .localization import ekf_localization_step
 from .ukf import sigma_points, ukf_predict, ukf_update, unscented_1d, unscented_transform
 
 __all__ = [
@@ -16,6 +17,7 @@ __all__ = [
     "associate",
     "bayes_predict",
     "bayes_update",
+    "ekf_localization_step",
     "ekf_predict",
     "ekf_update",
     "ellipse_axes",

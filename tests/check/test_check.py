@@ -1,13 +1,16 @@
-"""The exercise checkers: the package's own functions pass, each known mistake is named,
-and a function that raises, returns NaN or the wrong shape gets a clear verdict.
+"""The exercise checkers of chapters 1, 3, 4, 5, 7, 8 and 9: the package's own functions pass,
+each checker opens with its chapter's worked example, every mistake of its catalogue is named,
+the verdict points at the output that is wrong, and a function that raises, returns NaN or the
+wrong shape gets a clear verdict.
 
 The right and wrong answers the checkers judge are written the way a student might write
-them, in ``tests/check/answers.py``; the tables below pair each with its expected verdict.
-Noise letters: R = process noise, Q = measurement noise.
+them, in ``tests/check/answers.py``; :data:`CATALOGUE` below pairs each wrong one with the
+mistake its checker must name.  Noise letters: R = process noise, Q = measurement noise.
 """
 
 from __future__ import annotations
 
+import importlib
 import math
 
 import numpy as np
@@ -16,46 +19,180 @@ import pytest
 import kfcourse as kf
 from tests.check import answers
 
-CHECKERS = [
-    "bayes_predict",
-    "bayes_update",
-    "fuse",
-    "kf_1d_step",
-    "kf_step",
-    "range_bearing",
-    "range_bearing_jacobian",
-    "sigma_points",
-    "unicycle",
-]
+CHECKERS = {  # checker -> the module that holds it
+    "bayes_predict": "bayes",
+    "bayes_update": "bayes",
+    "fuse": "kalman",
+    "kf_1d_step": "kalman",
+    "kf_step": "kalman",
+    "range_bearing": "nonlinear",
+    "range_bearing_jacobian": "nonlinear",
+    "sigma_points": "ukf",
+    "unicycle": "nonlinear",
+    "unscented_transform": "ukf",
+}
+
+#: Each checker's catalogue: the mistakes students make, each as a student would write it.
+CATALOGUE = {
+    "bayes_predict": [
+        (answers.predict_backwards, "shift_wrong_way"),
+        (answers.predict_always_ring, "ignores_boundary"),
+        (answers.predict_leaky, "leaks_at_wall"),
+        (answers.predict_leaky_renormalised, "leaks_at_wall"),
+        (answers.predict_stays_put_at_wall, "wall_sends_back"),
+        (answers.predict_overwrites, "overwrites_not_adds"),
+    ],
+    "bayes_update": [
+        (answers.update_unnormalised, "not_normalised"),
+        (answers.update_by_largest, "not_normalised"),
+        (answers.update_adds, "adds_not_multiplies"),
+    ],
+    "kf_1d_step": [
+        (answers.kf_1d_swapped, "swapped_R_Q"),
+        (answers.kf_1d_squares_noise, "std_not_var"),
+        (answers.kf_1d_sqrt_noise, "std_not_var"),
+        (answers.kf_1d_a_once, "a_not_squared"),
+        (answers.kf_1d_innovation_backwards, "sign_flip"),
+        (answers.kf_1d_forgets_R, "forgot_R"),
+        (answers.kf_1d_forgets_Q, "forgot_Q"),
+        (answers.kf_1d_forgets_bu, "forgot_control"),
+        (answers.kf_1d_gain_from_var, "prior_not_predicted"),
+        (answers.kf_1d_innovation_from_mu, "prior_not_predicted"),
+        (answers.kf_1d_update_from_var, "prior_not_predicted"),
+        (answers.kf_1d_gain_for_c_one, "c_left_out"),
+    ],
+    "fuse": [
+        (answers.fuse_own_weights, "wrong_weights"),
+        (answers.fuse_plain_average, "wrong_weights"),
+        (answers.fuse_squares, "std_not_var"),
+        (answers.fuse_adds, "adds_variances"),
+    ],
+    "kf_step": [
+        (answers.kf_step_swapped, "swapped_R_Q"),
+        (answers.kf_step_swapped_with_solve, "swapped_R_Q"),
+        (answers.kf_step_no_transpose, "missing_transpose"),
+        (answers.kf_step_transpose_on_the_left, "missing_transpose"),
+        (answers.kf_step_gain_without_HT, "missing_transpose"),
+        (answers.kf_step_innovation_backwards, "sign_flip"),
+        (answers.kf_step_plus_KH, "sign_flip"),
+        (answers.kf_step_forgets_R, "forgot_R"),
+        (answers.kf_step_S_without_Q, "forgot_Q"),
+        (answers.kf_step_forgets_Bu, "forgot_control"),
+        (answers.kf_step_gain_from_Sig, "prior_not_predicted"),
+        (answers.kf_step_gain_and_S_from_Sig, "prior_not_predicted"),
+        (answers.kf_step_innovation_from_mu, "prior_not_predicted"),
+        (answers.kf_step_update_from_Sig, "prior_not_predicted"),
+        (answers.kf_step_no_inverse, "no_inverse"),
+        (answers.kf_step_one_over_S, "elementwise_inverse"),
+        (answers.kf_step_update_on_the_right, "wrong_order"),
+        (answers.kf_step_row_vector, "wrong_order"),
+    ],
+    "range_bearing": [
+        (answers.range_bearing_unwrapped, "unwrapped_angle"),
+        (answers.range_bearing_mod_2pi, "unwrapped_angle"),
+        (answers.range_bearing_atan, "atan_not_atan2"),
+        (answers.range_bearing_atan2_swapped, "atan2_arguments_swapped"),
+        (answers.range_bearing_robot_minus_landmark, "robot_minus_landmark"),
+        (answers.range_bearing_plus_theta, "heading_sign"),
+        (answers.range_bearing_heading_minus_direction, "sign_flip"),
+        (answers.range_bearing_degrees, "degrees"),
+        (answers.range_bearing_squared_range, "q_not_sqrt_q"),
+        (answers.range_bearing_bearing_first, "outputs_swapped"),
+    ],
+    "range_bearing_jacobian": [
+        (answers.jacobian_numeric, "numeric_not_derived"),
+        (answers.jacobian_lesson_finite_differences, "numeric_not_derived"),
+        (answers.jacobian_bearing_row_flipped, "bearing_row_sign"),
+        (answers.jacobian_range_row_flipped, "range_row_sign"),
+        (answers.jacobian_robot_minus_landmark, "robot_minus_landmark"),
+        (answers.jacobian_q_and_r_mixed, "q_not_sqrt_q"),
+        (answers.jacobian_r_in_bearing_row, "q_not_sqrt_q"),
+        (answers.jacobian_q_in_range_row, "q_not_sqrt_q"),
+        (answers.jacobian_dx_dy_swapped, "dx_dy_swapped"),
+        (answers.jacobian_no_theta, "missing_theta"),
+        (answers.jacobian_plus_one_theta, "sign_flip"),
+    ],
+    "unicycle": [
+        (answers.unicycle_no_limit, "divides_by_omega"),
+        (answers.unicycle_no_limit_floats, "divides_by_omega"),
+        (answers.unicycle_exact_zero_test, "exact_zero_test"),
+        (answers.unicycle_exact_zero_test_math, "exact_zero_test"),
+        (answers.unicycle_unwrapped, "unwrapped_angle"),
+        (answers.unicycle_y_backwards, "sign_flip"),
+        (answers.unicycle_euler, "euler_step"),
+        (answers.unicycle_sin_cos_swapped, "sin_cos_swapped"),
+        (answers.unicycle_heading_without_dt, "heading_without_dt"),
+        (answers.unicycle_speed_not_distance, "speed_not_distance"),
+    ],
+    "sigma_points": [
+        (answers.sigma_points_rows_of_L, "missing_transpose"),
+        (answers.sigma_points_no_root, "std_not_var"),
+        (answers.sigma_points_weights_without_half, "wrong_weights"),
+        (answers.sigma_points_outer_weights_half_n, "wrong_weights"),
+        (answers.sigma_points_with_beta, "wrong_weights"),
+        (answers.sigma_points_unscaled, "missing_scale"),
+        (answers.sigma_points_columns, "points_as_columns"),
+        (answers.sigma_points_symmetric_root, "not_cholesky"),
+        (answers.sigma_points_entrywise_sqrt, "not_cholesky"),
+    ],
+    "unscented_transform": [
+        (answers.unscented_points_not_through_f, "f_not_applied"),
+        (answers.unscented_mean_at_mu, "f_of_mean"),
+        (answers.unscented_mean_not_subtracted, "mean_not_subtracted"),
+        (answers.unscented_plain_average, "wrong_weights"),
+        (answers.unscented_np_cov, "wrong_weights"),
+        (answers.unscented_inner_product, "outer_product_order"),
+        (answers.unscented_unscaled_points, "missing_scale"),
+    ],
+}
+WRONG = [(name, fn, mistake) for name, entries in CATALOGUE.items() for fn, mistake in entries]
 
 
-def test_every_checker_named_in_the_task_exists():
-    required = {"bayes_predict", "bayes_update", "kf_1d_step", "kf_step", "range_bearing_jacobian"}
-    assert required | {"unicycle", "sigma_points"} <= set(kf.check.__all__)
+def what_the_checker_runs(name, monkeypatch) -> dict:
+    """The cases and variants the checker ``name`` hands to run_check."""
+    module = importlib.import_module(f"kfcourse.check.{CHECKERS[name]}")
+    seen = {}
+
+    def record(name, student_fn, reference, cases, variants, *args, **kwargs):
+        seen.update(cases=cases, variants=variants)
+
+    monkeypatch.setattr(module, "run_check", record)
+    getattr(kf.check, name)(getattr(kf, name))
+    return seen
+
+
+def test_every_checker_exists_and_has_a_catalogue():
     assert set(CHECKERS) <= set(kf.check.__all__)
-
-
-def test_the_catalogue_has_the_required_mistakes():
-    required = {
-        "not_normalised",
-        "shift_wrong_way",
-        "swapped_R_Q",
-        "std_not_var",
-        "missing_transpose",
-        "sign_flip",
-        "divides_by_omega",
-        "unwrapped_angle",
-        "wrong_weights",
-    }
-    assert required <= set(kf.check.MISTAKES)
+    assert set(CATALOGUE) == set(CHECKERS)
 
 
 @pytest.mark.parametrize("name", CHECKERS)
-def test_the_package_function_passes(name):
+def test_the_package_function_passes_and_the_verdict_names_the_worked_example(name):
     result = getattr(kf.check, name)(getattr(kf, name))
     assert result.passed, result.message
     assert result.mistake is None
     assert result.message.startswith("✔") and f"kf.{name}" in result.message
+    assert "worked example" in result.message
+
+
+@pytest.mark.parametrize("name", CHECKERS)
+def test_the_first_case_is_the_chapters_worked_example(name, monkeypatch):
+    first = what_the_checker_runs(name, monkeypatch)["cases"][0]
+    assert first.label.startswith("chapter ") and "worked example" in first.label
+
+
+def test_the_worked_examples_are_the_lessons_numbers(monkeypatch):
+    first = {name: what_the_checker_runs(name, monkeypatch)["cases"][0].inputs for name in CHECKERS}
+    mu, _ = kf.kf_step(*first["kf_step"].values())
+    assert np.round(mu, 3).tolist() == [1.16, 1.08]  # chapter 5's worked numbers
+    assert kf.range_bearing(*first["range_bearing"].values()) == pytest.approx([5.0, math.atan2(4, 3)])
+    H = kf.range_bearing_jacobian(*first["range_bearing_jacobian"].values())
+    assert np.round(H, 3).tolist() == [[-0.6, -0.8, 0.0], [0.16, -0.12, -1.0]]  # chapter 7
+    assert kf.unicycle(*first["unicycle"].values()) == pytest.approx([0.5, 0.0, 0.0])  # chapter 8
+    _, w, _ = kf.sigma_points(*first["sigma_points"].values())
+    assert w.tolist() == [0.0, 0.5, 0.5]  # chapter 9
+    mu_y, Sig_y = kf.unscented_transform(*first["unscented_transform"].values())
+    assert (float(mu_y[0]), float(Sig_y[0, 0])) == pytest.approx((5.0, 16.0))  # chapter 9: x ~ N(2, 1), y = x²
 
 
 @pytest.mark.parametrize("seed", [1, 2, 3])
@@ -70,48 +207,23 @@ def test_the_package_function_passes_with_other_seeds(name, seed):
     [
         ("bayes_predict", answers.hand_bayes_predict),
         ("kf_step", answers.hand_kf_step),
+        ("range_bearing_jacobian", answers.lesson_H_analytic),
+        ("range_bearing_jacobian", answers.jacobian_by_angles),
         ("unicycle", answers.hand_unicycle),
         ("sigma_points", answers.hand_sigma_points),
+        ("sigma_points", answers.sigma_points_interleaved),
+        ("sigma_points", answers.sigma_points_centre_last),
+        ("unscented_transform", answers.hand_unscented_transform),
     ],
 )
 def test_a_right_answer_written_differently_passes(name, fn):
-    """The checker compares with a tolerance, not bit for bit: textbook code in another form passes."""
+    """The checker compares with a tolerance, not bit for bit, and sigma points in any order:
+    textbook code in another form passes."""
     result = getattr(kf.check, name)(fn)
     assert result.passed, result.message
 
 
-WRONG = [
-    ("bayes_predict", answers.predict_backwards, "shift_wrong_way"),
-    ("bayes_predict", answers.predict_always_ring, "ignores_boundary"),
-    ("bayes_predict", answers.predict_leaky, "leaks_at_wall"),
-    ("bayes_update", answers.update_unnormalised, "not_normalised"),
-    ("kf_1d_step", answers.kf_1d_swapped, "swapped_R_Q"),
-    ("kf_1d_step", answers.kf_1d_squares_noise, "std_not_var"),
-    ("kf_1d_step", answers.kf_1d_a_once, "a_not_squared"),
-    ("fuse", answers.fuse_own_weights, "wrong_weights"),
-    ("fuse", answers.fuse_squares, "std_not_var"),
-    ("fuse", answers.fuse_adds, "adds_variances"),
-    ("kf_step", answers.kf_step_swapped, "swapped_R_Q"),
-    ("kf_step", answers.kf_step_no_transpose, "missing_transpose"),
-    ("kf_step", answers.kf_step_innovation_backwards, "sign_flip"),
-    ("range_bearing", answers.range_bearing_unwrapped, "unwrapped_angle"),
-    ("range_bearing", answers.range_bearing_atan, "atan_not_atan2"),
-    ("range_bearing_jacobian", answers.jacobian_robot_minus_landmark, "sign_flip"),
-    ("range_bearing_jacobian", answers.jacobian_q_and_r_mixed, "q_not_sqrt_q"),
-    ("unicycle", answers.unicycle_no_limit, "divides_by_omega"),
-    ("unicycle", answers.unicycle_no_limit_floats, "divides_by_omega"),
-    ("unicycle", answers.unicycle_unwrapped, "unwrapped_angle"),
-    ("unicycle", answers.unicycle_y_backwards, "sign_flip"),
-    ("unicycle", answers.unicycle_euler, "euler_step"),
-    ("sigma_points", answers.sigma_points_rows_of_L, "missing_transpose"),
-    ("sigma_points", answers.sigma_points_no_root, "std_not_var"),
-    ("sigma_points", answers.sigma_points_weights_without_half, "wrong_weights"),
-    ("sigma_points", answers.sigma_points_columns, "points_as_columns"),
-    ("sigma_points", answers.sigma_points_symmetric_root, "not_cholesky"),
-]
-
-
-@pytest.mark.parametrize(("name", "fn", "mistake"), WRONG, ids=[f"{n}-{m}" for n, _, m in WRONG])
+@pytest.mark.parametrize(("name", "fn", "mistake"), WRONG, ids=[f"{n}-{f.__name__}" for n, f, _ in WRONG])
 def test_a_known_mistake_is_named(name, fn, mistake):
     result = getattr(kf.check, name)(fn)
     assert not result.passed
@@ -122,8 +234,79 @@ def test_a_known_mistake_is_named(name, fn, mistake):
     assert "hapter" in result.hint  # the hint points at the chapter's equation
 
 
-def test_every_catalogue_key_is_exercised_by_a_wrong_function():
-    assert {mistake for _, _, mistake in WRONG} == set(kf.check.MISTAKES)
+@pytest.mark.parametrize("name", CHECKERS)
+def test_at_least_nine_in_ten_of_the_catalogue_are_named(name):
+    named = [getattr(kf.check, name)(fn).mistake == mistake for fn, mistake in CATALOGUE[name]]
+    assert sum(named) / len(named) >= 0.9
+    assert all(named)
+
+
+@pytest.mark.parametrize("name", CHECKERS)
+def test_every_mistake_a_checker_knows_is_in_its_catalogue(name, monkeypatch):
+    known = {variant.mistake for variant in what_the_checker_runs(name, monkeypatch)["variants"]}
+    assert known == {mistake for _, mistake in CATALOGUE[name]}
+    assert known <= set(kf.check.MISTAKES)
+
+
+# -------------------------------------------------------- the verdict points at the output
+def test_a_covariance_mistake_points_at_sig_and_says_mu_is_right():
+    result = kf.check.kf_step(answers.kf_step_update_from_Sig)
+    assert "case 1 of" in result.headline and "worked example" in result.headline
+    assert "Sig has the wrong value (mu is right)" in result.headline
+
+
+def test_a_mean_mistake_points_at_mu_and_says_sig_is_right():
+    result = kf.check.kf_step(answers.kf_step_innovation_from_mu)
+    assert "mu has the wrong value" in result.headline and "(Sig is right)" in result.headline
+
+
+def test_every_multi_output_checker_points_at_the_wrong_output():
+    assert "var has the wrong value (mu is right)" in kf.check.kf_1d_step(answers.kf_1d_update_from_var).headline
+    assert (
+        "wc has the wrong value at [0] (chi and wm are right)"
+        in kf.check.sigma_points(answers.sigma_points_with_beta).headline
+    )
+    assert "(mu_y is right)" in kf.check.unscented_transform(answers.unscented_mean_not_subtracted).headline
+    assert "mu has the wrong value (var is right)" in kf.check.fuse(answers.fuse_plain_average).headline
+
+
+def test_a_jacobian_mistake_points_at_the_entries_that_differ():
+    result = kf.check.range_bearing_jacobian(answers.jacobian_bearing_row_flipped)
+    assert "worked example" in result.headline
+    assert "H has the wrong value at [1, 0] and [1, 1]" in result.headline
+
+
+def test_a_swap_that_raises_on_the_worked_example_is_named():
+    """R and Q have different shapes in chapter 5's example: the swap raises there."""
+    result = kf.check.kf_step(answers.kf_step_swapped_with_solve)
+    assert "case 1 of" in result.headline and "it raised" in result.headline
+    assert result.mistake == "swapped_R_Q"
+
+
+# ------------------------------------------------------------- what the exercises ask
+def test_a_numerically_differentiated_jacobian_is_told_to_derive_it():
+    result = kf.check.range_bearing_jacobian(answers.jacobian_numeric)
+    assert not result.passed and result.mistake == "numeric_not_derived"
+    assert "only to" in result.headline and "derive" in result.hint
+    # it is within the tolerance everywhere: only the rounding-level agreement tells it apart
+    assert "case" in result.headline and "got:" in result.details
+
+
+def test_an_exact_zero_test_fails_where_chapter_8_shows_the_arc_formula_off():
+    result = kf.check.unicycle(answers.unicycle_exact_zero_test)
+    assert "ω = 1e-15" in result.headline and result.mistake == "exact_zero_test"
+    x_arc = answers.unicycle_exact_zero_test([0.0, 0.0, 0.3], [0.5, 1e-15], 1.0)[0]
+    assert 0.02 <= abs(x_arc - kf.unicycle([0.0, 0.0, 0.3], [0.5, 1e-15], 1.0)[0]) <= 0.15  # 2-15 cm off
+
+
+def test_sigma_points_in_another_order_pass_but_not_with_their_weights_mixed_up():
+    assert kf.check.sigma_points(answers.sigma_points_interleaved).passed
+
+    def weights_not_moved(mu, Sig, lam):
+        chi, w, _ = answers.sigma_points_interleaved(mu, Sig, lam)
+        return chi, w[::-1], w[::-1]  # the points in one order, the weights in another
+
+    assert not kf.check.sigma_points(weights_not_moved).passed
 
 
 # ------------------------------------------------------------- functions that misbehave
@@ -223,8 +406,13 @@ def test_the_verdict_displays_in_a_notebook():
     assert "✔" in ok._repr_html_() and repr(ok) == ok.message
 
 
+def test_the_functions_of_the_unscented_transform_show_their_formula():
+    result = kf.check.unscented_transform(answers.unscented_points_not_through_f)
+    assert "f   = f(x) = x²" in result.details and " at 0x" not in result.message
+
+
 def test_the_same_seed_gives_the_same_verdict_and_another_seed_other_cases():
     first = kf.check.unicycle(answers.unicycle_y_backwards, seed=5)
     assert first.message == kf.check.unicycle(answers.unicycle_y_backwards, seed=5).message
-    odd = kf.check.kf_step(answers.kf_step_no_transpose, seed=0).details
-    assert odd != kf.check.kf_step(answers.kf_step_no_transpose, seed=1).details
+    odd = kf.check.kf_step(answers.kf_step_forgets_Bu, seed=0).details
+    assert odd != kf.check.kf_step(answers.kf_step_forgets_Bu, seed=1).details
