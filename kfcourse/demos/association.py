@@ -9,7 +9,7 @@ from ..plots import palette
 from ..plots.localization import association_view, update_association
 from ..plots.style import FigureRenderer
 from ..sim.association import association_scan, gated_update
-from ._base import Demo, slider
+from ._base import Demo, button, slider
 
 GATE = 3.0  # standard deviations: the default validation gate
 GATE_RANGE = (1.0, 6.0)
@@ -23,6 +23,8 @@ class AssociationModel:
 
     Attributes
     ----------
+    seed : int
+        Seed of the scan's reading noise; "New scan" moves on to the next one.
     scan : AssociationScan
         The predicted belief, the map and the readings (with the leg's when ``leg``).
     gate : float
@@ -47,6 +49,12 @@ class AssociationModel:
         self.scan = association_scan(self.seed, leg=self.leg)
         self.result = gated_update(self.scan, self.gate)
 
+    def new_scan(self) -> None:
+        """The next seed: the same robot, map and gate, new noise on every reading."""
+        self.seed += 1
+        self.scan = association_scan(self.seed, leg=self.leg)
+        self.result = gated_update(self.scan, self.gate)
+
     def kept(self) -> float:
         """Share of true readings a gate of this size keeps: P(chi^2 with 2 dof <= gamma^2)."""
         return 1.0 - float(np.exp(-0.5 * self.gate**2))
@@ -66,7 +74,8 @@ def _readout(model: AssociationModel) -> str:
         rows.append("".join(CELL.format(x) for x in (name, nearest, f"{d[nearest]:.2f}", verdict)))
     table = "<table style='font-size:12px;margin:4px 0'>" + "".join(f"<tr>{row}</tr>" for row in rows) + "</table>"
     return (
-        f"<div style='font-size:13px;line-height:1.5'>gate γ = {model.gate:.1f}σ: a true reading falls outside it "
+        f"<div style='font-size:13px;line-height:1.5'>Scan {model.seed}. Gate γ = {model.gate:.1f}σ: a true reading "
+        "falls outside it "
         f"{100 * (1 - model.kept()):.2g} % of the time. {table}"
         f"Position error: predicted <b>{res.error_bar:.2f} m</b>; corrected with {int(res.accepted.sum())} of "
         f"{res.match.size} readings <b style='color:{palette.ESTIMATE}'>{res.error:.2f} m</b>.</div>"
@@ -77,8 +86,9 @@ CAPTION = (
     "<b>Data association.</b> Purple: the map (numbered squares), the predicted pose and its 2σ ellipse, and each "
     "landmark's gate (dashed): the readings within γ standard deviations of its predicted reading. Orange: the "
     "scan's readings, drawn from the predicted pose; filled and joined to a landmark if accepted, hollow if "
-    "rejected. Teal: the EKF estimate after the accepted readings, 2σ ellipse on top. Grey outline: the true pose. "
-    "Slider: the gate γ; toggle: a pedestrian's leg in the scan."
+    "rejected. Teal: the EKF estimate after the accepted readings and its 2σ ellipse, drawn on top; grey dotted "
+    "outline: the true pose. The box around the robots is shown enlarged bottom right. Slider: the gate γ; toggle: "
+    "a pedestrian's leg in the scan; <i>New scan</i>: the same scene with new reading noise."
 )
 
 
@@ -86,8 +96,9 @@ def data_association(seed: int = 0) -> Demo:
     """Demo "data association" (chapter 8): a scan of unlabelled readings, the map, and a
     validation gate that decides which readings are landmarks.
 
-    The slider sets the gate γ, the toggle adds a pedestrian's leg to the scan; the
-    readout beside the picture lists each reading's nearest landmark and verdict.
+    The slider sets the gate γ, the toggle adds a pedestrian's leg to the scan, "New
+    scan" draws new reading noise; the readout beside the picture lists each reading's
+    nearest landmark and verdict.
 
     Returns
     -------
@@ -109,13 +120,19 @@ def data_association(seed: int = 0) -> Demo:
         description="extra reading",
         style={"description_width": "initial", "button_width": "auto"},
     )
-    return Demo(
+    demo = Demo(
         name="data-association",
         caption=CAPTION,
         model=model,
         renderer=FigureRenderer(view.fig, view.moving),
         draw=draw,
-        controls={"gate": (gate, model.set_gate), "leg": (leg, model.set_leg)},
-        beside=["gate", "leg", readout],
+        controls={
+            "gate": (gate, model.set_gate),
+            "leg": (leg, model.set_leg),
+            "new_scan": (button("New scan", icon="refresh", tooltip="New noise on every reading"), model.new_scan),
+        },
+        beside=["gate", "leg", "new_scan", readout],
         display_width=IMAGE_WIDTH,
     )
+    demo.view = view  # the artists by name, for tests
+    return demo

@@ -13,9 +13,10 @@ from ..sim.curves import FUNCTIONS, GaussianThroughCurve
 from ._base import Demo, slider
 
 N_SAMPLES = 20_000  # fixed standard-normal draws, rescaled by the sliders
-X_RANGE = (-5.0, 5.0)  # the sigma points reach m +- sqrt(1 + lam) s = 2 + 2 * 1.5 at the sliders' extremes
+M_RANGE = (-2.5, 2.5)  # the input mean: the worked example's m = 2 has room on both sides
+X_RANGE = (-5.5, 5.5)  # the sigma points reach m +- sqrt(1 + lam) s = 2.5 + 2 * 1.5 at the sliders' extremes
 # The output axis of each function (chapter 7's functions over this wider input range).
-OUTPUT_LIMITS = {"x²": (-3.0, 27.0), "sin x": (-1.25, 1.25), "range √(x² + 1)": (0.5, 5.5)}
+OUTPUT_LIMITS = {"x²": (-3.0, 31.0), "sin x": (-1.25, 1.25), "range √(x² + 1)": (0.5, 6.0)}
 DISPLAY_WIDTH = 848  # CSS px: a laptop's notebook width, where the picture and its controls fit the screen
 
 
@@ -61,8 +62,8 @@ def sigma_points(seed: int = 0) -> Demo:
     view = sigma_points_view(OUTPUT_LIMITS, X_RANGE)
     caption = (
         "<b>Sigma points.</b> Purple: the input N(m, s²) and its sigma points m, m ± √(1+λ)·s (dot size: weight; "
-        "a ring: weight 0), carried up the curve f (black). Right: teal, the UKF's Gaussian from their images; "
-        "orange dashed, the EKF's tangent and its Gaussian; grey, the true output (20 000 draws). "
+        "a ring: weight 0), carried up the curve f (black). Right: teal solid, the UKF's Gaussian from their images; "
+        "teal dashed, the EKF's tangent and its Gaussian; grey, the true output (20 000 draws). "
         "An arrow: variance 0."
     )
     demo = Demo(
@@ -76,7 +77,7 @@ def sigma_points(seed: int = 0) -> Demo:
                 widgets.ToggleButtons(options=list(FUNCTIONS), value=model.function, description="f(x)"),
                 model.set_function,
             ),
-            "m": (slider(widgets.FloatSlider, "input mean m", model.m, -2.0, 2.0, 0.05), model.set_m),
+            "m": (slider(widgets.FloatSlider, "input mean m", model.m, *M_RANGE, 0.05), model.set_m),
             "s": (slider(widgets.FloatSlider, "input width s", model.s, 0.05, 1.5, 0.05), model.set_s),
             "lam": (
                 slider(widgets.FloatSlider, "spread λ", model.lam, 0.0, 3.0, 0.1, readout_format=".1f"),

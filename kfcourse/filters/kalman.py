@@ -99,9 +99,12 @@ def kf_update(mu_bar, Sig_bar, z, H, Q) -> tuple[np.ndarray, np.ndarray]:
         \Sigma = (I - KH)\bar\Sigma
 
     Equation (5) is computed in its Joseph form
-    :math:`(I-KH)\bar\Sigma(I-KH)^\top + KQK^\top`: equal for the optimal gain, and a sum
-    of two products of the form :math:`A M A^\top`, so it stays symmetric and keeps
-    rounding from pushing an eigenvalue far below zero.  Introduced in chapter 5.
+    :math:`(I-KH)\bar\Sigma(I-KH)^\top + KQK^\top`: equal to :math:`(I-KH)\bar\Sigma` for
+    the optimal gain, and a sum of two terms :math:`A M A^\top` with :math:`M` a covariance,
+    so it is symmetric positive semi-definite for any gain :math:`K`, up to the rounding of
+    its own products (it does not make rounding vanish).  A gain error :math:`\Delta K`
+    moves it only by :math:`\Delta K\, S\, \Delta K^\top`.  The result is averaged with its
+    transpose, so it is exactly symmetric.  Introduced in chapter 5.
 
     Parameters
     ----------

@@ -6,9 +6,11 @@ from __future__ import annotations
 from dataclasses import dataclass
 
 import numpy as np
+from matplotlib import patheffects
+from matplotlib.axes import Axes
 from matplotlib.collections import LineCollection, PathCollection
 from matplotlib.figure import Figure
-from matplotlib.patches import Ellipse, Polygon
+from matplotlib.patches import Ellipse, Polygon, Rectangle
 from matplotlib.text import Text
 
 from .. import _validate as v
@@ -17,7 +19,13 @@ from .artists import covariance_ellipse, landmarks, robot, update_covariance_ell
 from .style import new_figure
 
 ASSOCIATION_X, ASSOCIATION_Y = (-4.9, 5.6), (-4.6, 5.1)  # m: room for every gate up to 6 sigma on chapter 8's map
-ASSOCIATION_ROBOT = 0.2  # m, centre to nose: small enough that the 2-sigma ellipse after the update shows
+ASSOCIATION_ROBOT = 0.2  # m, centre to nose
+# The close-up of the robots: the window it shows (m) and where it sits (a fraction of the map's axes), in the
+# corner that no gate reaches up to the slider's 6 sigma.
+CLOSE_UP_X, CLOSE_UP_Y = (-0.3, 0.65), (-0.75, 0.2)
+CLOSE_UP_AT = (0.69, 0.015, 0.3, 0.3)
+CLOSE_UP_ROBOT = 0.1  # m: smaller robots in the close-up, so that a few centimetres between them show
+CLOSE_UP_ZOOM = CLOSE_UP_AT[2] * (ASSOCIATION_X[1] - ASSOCIATION_X[0]) / (CLOSE_UP_X[1] - CLOSE_UP_X[0])
 
 
 def reading_points(pose, z) -> np.ndarray:
@@ -88,10 +96,13 @@ class AssociationView:
     """What :func:`association_view` drew; :func:`update_association` moves it.
 
     The map, the true pose, the predicted pose and its 2-sigma ellipse are drawn once:
-    they are the scan's, and a new gate or an extra reading does not change them.
+    they are the scan's, and a new gate, an extra reading or a new scan does not move them.
+    The close-up (an inset in the map's empty corner) shows the robots ``CLOSE_UP_ZOOM``
+    times larger, where the estimate's ellipse and its distance from the truth are visible.
     """
 
     fig: Figure
+    close_up: Axes  #: the inset around the robots
     gates: LineCollection  #: each landmark's gate, drawn like the readings (purple, dashed)
     beams: LineCollection  #: from the predicted pose to each reading (faint orange)
     links: LineCollection  #: from each accepted reading to its landmark
@@ -99,12 +110,13 @@ class AssociationView:
     unused: PathCollection  #: rejected readings (hollow orange)
     leg_label: Text  #: "leg", beside the leg's reading (hidden without one)
     estimate: Polygon  #: the robot after the updates (teal)
-    truth: Polygon  #: the true pose (grey outline)
-    ellipse: Ellipse  #: the estimate's 2-sigma ellipse (teal)
+    ellipse: Ellipse  #: the estimate's 2-sigma ellipse (teal, white edge)
+    close_estimate: Polygon  #: the same robot in the close-up
+    close_ellipse: Ellipse  #: the same ellipse in the close-up
 
     @property
     def moving(self) -> list:
-        """Every artist that changes with the gate or the scan, bottom to top."""
+        """Every artist that changes with the gate or the scan, bottom to top (all above the truth)."""
         return [
             self.gates,
             self.beams,
@@ -113,13 +125,27 @@ class AssociationView:
             self.unused,
             self.leg_label,
             self.estimate,
-            self.truth,  # never moves, but drawn over the estimate so that the estimate never hides it
-            self.ellipse,  # over both: it shows even when it is smaller than the triangles
+            self.ellipse,
+            self.close_estimate,
+            self.close_ellipse,
         ]
 
 
+def _robots(ax, scan, size: float) -> tuple[Polygon, Ellipse]:
+    """The predicted pose (purple) and its 2-sigma ellipse, the true pose (grey dotted outline), and the
+    estimate (teal, returned with its 2-sigma ellipse: the update moves them)."""
+    robot(ax, scan.mu_bar, color=palette.PREDICTION, size=size, alpha=0.6, zorder=3)
+    covariance_ellipse(ax, scan.mu_bar, scan.Sig_bar[:2, :2], nsig=2.0, color=palette.PREDICTION, lw=1.5)
+    robot(ax, scan.truth, color=palette.TRUTH, size=size, facecolor="none", lw=1.5, ls=(0, (1.5, 1)), zorder=4)
+    estimate = robot(ax, scan.mu_bar, color=palette.ESTIMATE, size=size, alpha=0.9, zorder=5)
+    halo = [patheffects.withStroke(linewidth=3.5, foreground="white")]  # shows on the teal robot too
+    ellipse = covariance_ellipse(ax, scan.mu_bar, scan.Sig_bar[:2, :2], nsig=2.0, lw=1.6, path_effects=halo)
+    return estimate, ellipse
+
+
 def association_view(model) -> AssociationView:
-    """The chapter 8 map, the predicted pose, the gates, a scan's readings and the estimate after them.
+    """The chapter 8 map, the predicted pose, the gates, a scan's readings and the estimate after them,
+    with a close-up of the robots.
 
     Introduced in chapter 8.
 
@@ -141,8 +167,17 @@ def association_view(model) -> AssociationView:
     ax.set_xlabel("x (m)")
     ax.set_ylabel("y (m)")
     landmarks(ax, scan.landmarks, labels=True, zorder=2)
-    robot(ax, scan.mu_bar, color=palette.PREDICTION, size=ASSOCIATION_ROBOT, alpha=0.8, zorder=3)
-    covariance_ellipse(ax, scan.mu_bar, scan.Sig_bar[:2, :2], nsig=2.0, color=palette.PREDICTION, lw=1.5)
+    estimate, ellipse = _robots(ax, scan, ASSOCIATION_ROBOT)
+    (x0, x1), (y0, y1) = CLOSE_UP_X, CLOSE_UP_Y
+    box = {"fill": False, "edgecolor": palette.INK, "lw": 0.8, "zorder": 1}
+    ax.add_patch(Rectangle((x0, y0), x1 - x0, y1 - y0, **box))  # what the close-up shows
+    close_up = ax.inset_axes(CLOSE_UP_AT, xlim=CLOSE_UP_X, ylim=CLOSE_UP_Y, xticks=[], yticks=[])
+    close_up.set_aspect("equal")
+    close_up.grid(False)
+    close_up.set_title(f"close-up of the box, ×{CLOSE_UP_ZOOM:.0f}", fontsize=8, pad=2)
+    for side in ("top", "right"):
+        close_up.spines[side].set_visible(True)
+    close_estimate, close_ellipse = _robots(close_up, scan, CLOSE_UP_ROBOT)
 
     def lines(**style) -> LineCollection:
         return ax.add_collection(LineCollection([], **style), autolim=False)
@@ -153,10 +188,9 @@ def association_view(model) -> AssociationView:
     used = ax.scatter([], [], s=40, color=palette.MEASUREMENT, zorder=4)
     unused = ax.scatter([], [], s=60, facecolors="white", edgecolors=palette.MEASUREMENT, linewidths=2.0, zorder=4)
     leg_label = ax.text(0, 0, "leg", color=palette.MEASUREMENT, fontsize=9, ha="left", va="bottom", zorder=5)
-    estimate = robot(ax, scan.mu_bar, color=palette.ESTIMATE, size=ASSOCIATION_ROBOT, alpha=0.5, zorder=5)
-    truth = robot(ax, scan.truth, color=palette.TRUTH, size=ASSOCIATION_ROBOT, facecolor="none", lw=2.0, zorder=6)
-    ellipse = covariance_ellipse(ax, scan.mu_bar, scan.Sig_bar[:2, :2], nsig=2.0, lw=2.0, zorder=7)
-    view = AssociationView(fig, gates, beams, links, used, unused, leg_label, estimate, truth, ellipse)
+    view = AssociationView(
+        fig, close_up, gates, beams, links, used, unused, leg_label, estimate, ellipse, close_estimate, close_ellipse
+    )
     update_association(view, model)
     return view
 
@@ -182,8 +216,9 @@ def update_association(view: AssociationView, model) -> None:
     view.leg_label.set_visible(leg.size > 0)
     if leg.size:
         view.leg_label.set_position(points[leg[0]] + [0.12, 0.05])
-    update_robot(view.estimate, res.mu)
-    update_covariance_ellipse(view.ellipse, res.mu, res.Sig[:2, :2])
+    for estimate, ellipse in ((view.estimate, view.ellipse), (view.close_estimate, view.close_ellipse)):
+        update_robot(estimate, res.mu)
+        update_covariance_ellipse(ellipse, res.mu, res.Sig[:2, :2])
 
 
 def update_ellipse_chart(mu_bar, Sig_bar, mu, Sig, landmark, nsig: float = 2.0):

@@ -36,10 +36,11 @@ def _gaussian(grid, mean: float, var: float) -> np.ndarray:
 def transform_moments_chart(y, ukf, ekf, bins: int = 80, y_range=None):
     """Chapter 9: the samples of a transformed Gaussian against the UKF's and the EKF's Gaussians.
 
-    A grey histogram of the true output samples ``y``; the UKF's Gaussian (teal)
-    and the EKF's (orange, dashed); a dotted line at each filter's mean, and a wide
-    pale grey band at the samples' mean, so that it still shows when a filter's
-    mean lies on it.
+    A grey histogram of the true output samples ``y``; the UKF's Gaussian (teal,
+    solid) and the EKF's (teal, dashed: in the course the EKF beside another filter
+    is teal dashed); a thin line at each filter's mean in its curve's style, and a
+    wide pale grey band at the samples' mean, so that it still shows when a
+    filter's mean lies on it.
 
     Introduced in chapter 9.
 
@@ -82,21 +83,26 @@ def transform_moments_chart(y, ukf, ekf, bins: int = 80, y_range=None):
     ax.plot(
         grid,
         _gaussian(grid, mean_e, var_e),
-        color=palette.MEASUREMENT,
+        color=palette.ESTIMATE,
         lw=1.8,
         ls="--",
         label=f"EKF N({mean_e:.3g}, {var_e:.3g})",
     )
     # The samples' mean: a wide band under the filters' dotted means, visible even where one of them lies on it.
     ax.axvline(float(y.mean()), color=palette.TRUTH, lw=5.0, alpha=0.5, zorder=1.5, label="samples' mean")
-    for mean, colour in ((mean_u, palette.ESTIMATE), (mean_e, palette.MEASUREMENT)):
-        ax.axvline(mean, color=colour, lw=1.2, ls=":")
+    for mean, style in ((mean_u, "-"), (mean_e, "--")):
+        ax.axvline(mean, color=palette.ESTIMATE, lw=1.0, ls=style)
     ax.set_xlim(lo, hi)
     ax.set_xlabel("output y = f(x)")
     ax.set_ylabel("density")
     ax.set_title(f"samples: mean {y.mean():.3g}, variance {y.var():.3g}", fontsize=10)
     ax.legend(loc="upper right", fontsize=8)
     return fig
+
+
+# The UKF and the EKF on one picture: both teal (estimates), the UKF solid and wide and pale, the EKF dashed over it.
+UKF_STYLE = {"color": palette.ESTIMATE, "lw": 3.2, "alpha": 0.5, "solid_capstyle": "butt"}
+EKF_STYLE = {"color": palette.ESTIMATE, "lw": 1.4, "ls": "--"}
 
 
 def _rms(error) -> float:
@@ -106,10 +112,11 @@ def _rms(error) -> float:
 def filter_comparison_chart(ekf, ukf):
     """Chapter 9: the same drive followed by an EKF and by a UKF.
 
-    Left: the map, the true path (grey), the EKF's estimate (orange, dashed), the
-    UKF's (teal) and the landmarks (purple squares), with the legend above the map
-    so that it hides no landmark.  Right: the position error of each over time,
-    with its RMS in the legend.
+    Left: the map, the true path (grey), the UKF's estimate (teal, solid: a wide pale
+    line), the EKF's (teal, dashed, drawn over it, so that both show where they
+    agree) and the landmarks (purple squares), with the legend above the map so
+    that it hides no landmark.  Right: the position error of each over time, in the
+    same styles, with its RMS in the legend.
 
     Introduced in chapter 9.
 
@@ -127,15 +134,15 @@ def filter_comparison_chart(ekf, ukf):
         raise ValueError("ekf and ukf must be runs of the same drive (the same t and truth)")
     fig, (ax_map, ax_e) = new_figure(10.0, 3.8, ncols=2, gridspec_kw={"width_ratios": [1, 1.2]})
     ax_map.plot(ekf.truth[:, 0], ekf.truth[:, 1], color=palette.TRUTH, lw=3, label="truth")
-    ax_map.plot(ekf.mu[:, 0], ekf.mu[:, 1], color=palette.MEASUREMENT, lw=1.6, ls="--", label="EKF")
-    ax_map.plot(ukf.mu[:, 0], ukf.mu[:, 1], color=palette.ESTIMATE, lw=1.6, label="UKF")
+    ax_map.plot(ukf.mu[:, 0], ukf.mu[:, 1], label="UKF", **UKF_STYLE)
+    ax_map.plot(ekf.mu[:, 0], ekf.mu[:, 1], label="EKF", **EKF_STYLE)
     landmarks(ax_map, ekf.landmarks, label="landmarks")
     ax_map.set_aspect("equal", adjustable="datalim")
     ax_map.set_xlabel("x (m)")
     ax_map.set_ylabel("y (m)")
     ax_map.legend(loc="lower center", bbox_to_anchor=(0.5, 1.0), ncol=4, fontsize=8, frameon=False)
-    ax_e.plot(ekf.t, ekf.error, color=palette.MEASUREMENT, lw=1.8, ls="--", label=f"EKF, RMS {_rms(ekf.error):.3f} m")
-    ax_e.plot(ukf.t, ukf.error, color=palette.ESTIMATE, lw=1.8, label=f"UKF, RMS {_rms(ukf.error):.3f} m")
+    ax_e.plot(ukf.t, ukf.error, label=f"UKF, RMS {_rms(ukf.error):.3f} m", **UKF_STYLE)
+    ax_e.plot(ekf.t, ekf.error, label=f"EKF, RMS {_rms(ekf.error):.3f} m", **EKF_STYLE)
     ax_e.set_xlabel("time (s)")
     ax_e.set_ylabel("position error (m)")
     ax_e.set_ylim(bottom=0.0)
@@ -156,14 +163,14 @@ class SigmaPointsView:
     output_limits: dict  #: function name -> (low, high) of the output axis
     bins: int  #: bins of the sampled output's histogram
     curve: Line2D  #: f
-    tangent: Line2D  #: the EKF's tangent at m, orange dashed
+    tangent: Line2D  #: the EKF's tangent at m, teal dashed
     guides: LineCollection  #: dotted paths of the sigma points: up to the curve, across to the output axis
     on_curve: PathCollection  #: the sigma points on the curve
     input_density: Line2D  #: N(m, s²), purple
     on_input: PathCollection  #: the sigma points on the input density
     sampled: Polygon  #: histogram of the true output, grey
     ukf: Line2D  #: the UKF's output Gaussian, teal
-    ekf: Line2D  #: the EKF's output Gaussian, orange dashed
+    ekf: Line2D  #: the EKF's output Gaussian, teal dashed
     on_output: PathCollection  #: the sigma points' images on the output axis
     info: Text  #: the numbers
 
@@ -244,7 +251,7 @@ def sigma_points_view(
     ax_f, ax_out, ax_in = panels.ax_f, panels.ax_out, panels.ax_in
     x = np.linspace(*x_range, 500)
     (curve,) = ax_f.plot(x, x, color=palette.INK, lw=1.5, label="f(x)")
-    (tangent,) = ax_f.plot(x, x, color=palette.MEASUREMENT, lw=1.6, ls="--", label="EKF: tangent at m")
+    (tangent,) = ax_f.plot(x, x, color=palette.ESTIMATE, lw=1.6, ls="--", label="EKF: tangent at m")
     guides = LineCollection([], colors=palette.PREDICTION, lw=0.9, linestyles=":")
     ax_f.add_collection(guides)
     on_curve = _sigma_dots(ax_f, palette.PREDICTION)
@@ -254,7 +261,7 @@ def sigma_points_view(
     sampled = Polygon([[0, 0], [1, 1], [0, 1]], closed=True, facecolor=palette.TRUTH, alpha=0.45, lw=0, label="sampled")
     ax_out.add_patch(sampled)
     (ukf,) = ax_out.plot([0, 1], [0, 1], color=palette.ESTIMATE, lw=2.2, label="UKF")
-    (ekf,) = ax_out.plot([0, 1], [0, 1], color=palette.MEASUREMENT, lw=1.8, ls="--", label="EKF")
+    (ekf,) = ax_out.plot([0, 1], [0, 1], color=palette.ESTIMATE, lw=1.8, ls="--", label="EKF")
     on_output = _sigma_dots(ax_out, palette.ESTIMATE, transform=ax_out.get_yaxis_transform())  # x: panel fraction
     # Above the panel, where no output density can reach it.
     ax_out.legend(

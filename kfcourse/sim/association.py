@@ -5,7 +5,8 @@ centimetres off the truth.  Its sensor returns one reading [r, phi] per landmark
 of the map and, if a pedestrian stands nearby, one more from a leg.  The readings
 come unlabelled: :func:`gated_update` matches each one to the landmark with the
 smallest Mahalanobis distance, rejects it if even that one lies outside the
-validation gate, and runs the EKF update once per accepted reading.
+validation gate, and runs the EKF update once per accepted reading
+(:func:`landmark_update`).
 """
 
 from __future__ import annotations
@@ -115,6 +116,42 @@ def association_scan(seed: int = 0, leg: bool = False) -> AssociationScan:
     )
 
 
+def landmark_update(mu_bar, Sig_bar, z, landmark, Q) -> tuple[np.ndarray, np.ndarray]:
+    """One EKF update of a pose with the range-bearing reading ``z`` of one known landmark.
+
+    :func:`kfcourse.ekf_update` with chapter 7's ``h`` and ``H`` bound to ``landmark``
+    and the bearing innovation wrapped (:func:`kfcourse.models.range_bearing_residual`).
+    A scan of several landmarks is a sequence of these.  Introduced in chapter 8.
+
+    Parameters
+    ----------
+    mu_bar : array_like, shape (3,)
+        Predicted pose ``[x, y, theta]``.
+    Sig_bar : array_like, shape (3, 3)
+        Its covariance.
+    z : array_like, shape (2,)
+        The reading ``[r, phi]``.
+    landmark : array_like, shape (2,)
+        Where the landmark stands (m).
+    Q : array_like, shape (2, 2)
+        Measurement-noise covariance of the reading.
+
+    Returns
+    -------
+    (mu, Sig)
+    """
+    m = v.vector(landmark, "landmark", 2)
+    return ekf_update(
+        mu_bar,
+        Sig_bar,
+        z,
+        lambda x: range_bearing(x, m),
+        lambda x: range_bearing_jacobian(x, m),
+        Q,
+        residual=range_bearing_residual,
+    )
+
+
 def gated_update(scan: AssociationScan, gate: float = 3.0) -> GatedUpdate:
     r"""Match every reading of ``scan`` to the map, then update the EKF with the accepted ones.
 
@@ -157,16 +194,7 @@ def gated_update(scan: AssociationScan, gate: float = 3.0) -> GatedUpdate:
     for z, j in zip(scan.z, match, strict=True):
         if j < 0:
             continue  # outside the gate: not a landmark, not used
-        m = scan.landmarks[j]
-        mu, Sig = ekf_update(
-            mu,
-            Sig,
-            z,
-            lambda x, m=m: range_bearing(x, m),
-            lambda x, m=m: range_bearing_jacobian(x, m),
-            scan.Q,
-            residual=range_bearing_residual,
-        )
+        mu, Sig = landmark_update(mu, Sig, z, scan.landmarks[j], scan.Q)
     return GatedUpdate(
         gate=gate,
         distances=np.array(distances, dtype=float),

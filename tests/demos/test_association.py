@@ -1,4 +1,7 @@
-"""Chapter 8's "Try this" prompts for the data-association demo, each driven as the prose says."""
+"""Chapter 8's data-association demo: what it draws, where, and that it holds at every slider position.
+
+Its "Try this" prompts are driven in ``tests/demos/test_prompts_ch08.py``.
+"""
 
 from __future__ import annotations
 
@@ -6,99 +9,110 @@ import numpy as np
 import pytest
 from matplotlib.colors import to_rgba
 from matplotlib.patches import Ellipse, Polygon
-from matplotlib.path import Path
 
 import kfcourse as kf
 from kfcourse.demos.association import LEG_OPTIONS
 from kfcourse.plots import palette
-from kfcourse.plots.localization import ASSOCIATION_ROBOT as ROBOT_SIZE
+from kfcourse.plots.localization import CLOSE_UP_X, CLOSE_UP_Y
 from tests.demos.layout import readout
 
 NO_LEG, LEG = LEG_OPTIONS
+TEAL = to_rgba(palette.ESTIMATE)[:3]
 
 
-def estimate_drawn(demo) -> np.ndarray:
-    """Centre of the teal robot triangle in the picture."""
-    teal = to_rgba(palette.ESTIMATE)[:3]
-    (robot,) = [
-        a for a in demo.renderer.dynamic if isinstance(a, Polygon) and a.get_facecolor()[:3] == pytest.approx(teal)
-    ]
-    return np.asarray(robot.get_xy(), float)[:3].mean(axis=0)  # the triangle's centroid is the pose
+def centre(robot: Polygon) -> np.ndarray:
+    """The robot triangle's centroid: its pose's position."""
+    return np.asarray(robot.get_xy(), float)[:3].mean(axis=0)
+
+
+def is_grey_outline(patch) -> bool:
+    """A grey edge with nothing inside: the true pose."""
+    return patch.get_edgecolor()[:3] == pytest.approx(to_rgba(palette.TRUTH)[:3]) and patch.get_facecolor()[3] == 0
 
 
 def test_first_frame_default_gate_every_reading_accepted():
     demo = kf.demos.data_association(seed=0)
     res = demo.model.result
-    assert demo.model.gate == 3.0 and not demo.model.leg
+    assert demo.model.gate == 3.0 and not demo.model.leg and demo.model.seed == 0
     assert res.accepted.all() and res.match.size == 4
     assert res.error_bar == pytest.approx(0.39, abs=0.005)
     assert res.error == pytest.approx(0.07, abs=0.005)
-    assert estimate_drawn(demo) == pytest.approx(res.mu[:2])
-    assert "nan" not in readout(demo).lower()
+    view = demo.view
+    for robot, ellipse in ((view.estimate, view.ellipse), (view.close_estimate, view.close_ellipse)):
+        assert centre(robot) == pytest.approx(res.mu[:2])
+        assert ellipse.get_center() == pytest.approx(res.mu[:2])
+    assert "Scan 0." in readout(demo) and "nan" not in readout(demo).lower()
 
 
-def test_prompt_1_the_leg_is_rejected_at_the_default_gate():
-    """Try 1: gate 3 sigma, add the leg: 4.7 sigma from landmark 3, rejected; the error stays 0.07 m."""
+def test_the_estimate_is_drawn_over_the_truth_and_its_ellipse_over_the_estimate():
+    """The teal robot is opaque and above the grey dotted truth (a static artist: drawn first); its ellipse is
+    above it, edged in white so that it shows on the teal; both again in the close-up."""
     demo = kf.demos.data_association(seed=0)
-    before = demo.model.result.mu.copy()
+    view, dynamic = demo.view, demo.renderer.dynamic
+    for ax, robot, ellipse in ((demo.renderer.fig.axes[0], view.estimate, view.ellipse),
+                               (view.close_up, view.close_estimate, view.close_ellipse)):  # fmt: skip
+        assert robot in dynamic and ellipse in dynamic and dynamic.index(ellipse) > dynamic.index(robot)
+        assert robot.get_facecolor()[:3] == pytest.approx(TEAL) and robot.get_alpha() >= 0.9
+        assert ellipse.get_edgecolor()[:3] == pytest.approx(TEAL) and ellipse.get_path_effects()
+        (truth,) = [p for p in ax.patches if isinstance(p, Polygon) and is_grey_outline(p)]
+        assert truth not in dynamic and centre(truth) == pytest.approx(demo.model.scan.truth[:2])
+        assert truth.get_linestyle() != "-" and truth.get_linewidth() < 2.0  # dotted, thinner than before
+
+
+def test_the_close_up_shows_the_robots_larger_wherever_the_estimate_goes():
+    """The close-up's window holds the prediction, the truth and every estimate the demo can show
+    (60 scans, with and without the leg, every gate), and it is drawn several times larger than the map."""
+    demo = kf.demos.data_association(seed=0)
+    fig, view = demo.renderer.fig, demo.view
+    fig.canvas.draw()
+    ax = fig.axes[0]
+    map_scale = ax.get_window_extent().width / np.ptp(ax.get_xlim())  # pixels per metre
+    close_scale = view.close_up.get_window_extent().width / np.ptp(view.close_up.get_xlim())
+    assert close_scale > 3.0 * map_scale
+    (x0, x1), (y0, y1) = CLOSE_UP_X, CLOSE_UP_Y
+    scan = demo.model.scan
+    for point in (scan.mu_bar[:2], scan.truth[:2]):
+        assert x0 < point[0] < x1 and y0 < point[1] < y1
+    for seed in range(60):
+        for leg in (False, True):
+            s = kf.sim.association_scan(seed, leg=leg)
+            for gate in np.arange(1.0, 6.01, 0.5):
+                x, y = kf.sim.gated_update(s, gate).mu[:2]
+                assert x0 + 0.08 < x < x1 - 0.08 and y0 + 0.08 < y < y1 - 0.08  # with the robot around it
+
+
+def test_the_close_up_sits_where_no_gate_reaches():
+    """At the slider's 6 sigma no gate outline enters the close-up's box on the map."""
+    demo = kf.demos.data_association(seed=0)
     demo.controls["leg"].value = LEG
-    res = demo.model.result
-    assert demo.model.leg and res.match.size == 5
-    assert res.distances[-1].argmin() == 3
-    assert res.distances[-1].min() == pytest.approx(4.7, abs=0.05)
-    assert res.match[-1] == -1
-    assert res.mu == pytest.approx(before)
-    assert res.error == pytest.approx(0.07, abs=0.005)
-    assert "rejected" in readout(demo)
-    leg_point = kf.plots.reading_points(demo.model.scan.mu_bar, demo.model.scan.z[-1])
-    hollow = demo.renderer.dynamic[4]  # rejected readings: hollow orange circles
-    assert np.asarray(hollow.get_offsets()) == pytest.approx(leg_point)
-    assert not any(Path(p.vertices).contains_points(leg_point)[0] for p in demo.renderer.dynamic[0].get_paths())
+    demo.controls["gate"].value = 6.0
+    fig = demo.renderer.fig
+    fig.canvas.draw()
+    ax, close_up = fig.axes[0], demo.view.close_up
+    box = close_up.get_tightbbox(fig.canvas.get_renderer())  # with its title, in pixels
+    for path in demo.view.gates.get_paths():
+        pixels = ax.transData.transform(path.vertices)
+        assert not box.count_contains(pixels), "a gate runs into the close-up"
 
 
-def test_prompt_2_a_wide_gate_lets_the_leg_in_and_the_estimate_slides_off():
-    """Try 2: open the gate to 5 sigma: the leg is accepted as landmark 3, the error jumps to 0.29 m."""
+def test_new_scan_draws_new_noise_and_keeps_the_scene_and_the_controls():
     demo = kf.demos.data_association(seed=0)
     demo.controls["leg"].value = LEG
-    demo.controls["gate"].value = 5.0
-    res = demo.model.result
-    assert res.match[-1] == 3
-    leg_point = kf.plots.reading_points(demo.model.scan.mu_bar, demo.model.scan.z[-1])
-    assert Path(demo.renderer.dynamic[0].get_paths()[3].vertices).contains_points(leg_point)[0]  # inside gate 3
-    assert res.error == pytest.approx(0.29, abs=0.005)
-    assert res.error > 4 * kf.sim.gated_update(demo.model.scan, 3.0).error
-    assert estimate_drawn(demo) == pytest.approx(res.mu[:2])
-    truth_drawn = np.asarray(demo.renderer.dynamic[-2].get_xy(), float)[:3].mean(axis=0)  # the grey outline
-    assert truth_drawn == pytest.approx(demo.model.scan.truth[:2])
-    assert np.linalg.norm(estimate_drawn(demo) - truth_drawn) > ROBOT_SIZE  # the triangles no longer overlap much
-
-
-def test_prompt_3_a_tight_gate_throws_good_readings_away():
-    """Try 3: no leg, gate 1 sigma: three of four true readings rejected, error 0.36 m against 0.39 m predicted."""
-    demo = kf.demos.data_association(seed=0)
-    demo.controls["leg"].value = LEG
-    demo.controls["leg"].value = NO_LEG
-    demo.controls["gate"].value = 1.0
-    res = demo.model.result
-    assert res.match.size == 4 and res.accepted.sum() == 1
-    assert res.error == pytest.approx(0.36, abs=0.005)
-    assert res.error_bar == pytest.approx(0.39, abs=0.005)
-
-
-def test_prompt_4_at_two_sigma_one_true_reading_is_just_outside():
-    """Try 4: gate 2 sigma: reading 1 (2.01 sigma) rejected; a 2-sigma gate misses 14 % of true readings."""
-    demo = kf.demos.data_association(seed=0)
-    demo.controls["gate"].value = 2.0
-    res = demo.model.result
-    assert list(res.match) == [0, -1, 2, 3]
-    assert res.distances[1, 1] == pytest.approx(2.01, abs=0.005)
-    assert 1 - demo.model.kept() == pytest.approx(0.135, abs=0.001)
-    assert "14 %" in readout(demo)
+    demo.controls["gate"].value = 4.0
+    before = demo.model.scan
+    demo.controls["new_scan"].click()
+    after = demo.model.scan
+    assert demo.model.seed == 1 and demo.model.leg and demo.model.gate == 4.0
+    assert after.truth == pytest.approx(before.truth) and after.mu_bar == pytest.approx(before.mu_bar)
+    assert not np.allclose(after.z, before.z)
+    assert after.z == pytest.approx(kf.sim.association_scan(1, leg=True).z)
+    assert centre(demo.view.estimate) == pytest.approx(demo.model.result.mu[:2])
+    assert "Scan 1." in readout(demo)
 
 
 def test_gates_drawn_around_every_landmark_and_they_grow_with_the_slider():
     demo = kf.demos.data_association(seed=0)
-    gates = demo.renderer.dynamic[0]
+    gates = demo.view.gates
     small = [np.ptp(p.vertices, axis=0) for p in gates.get_paths()]
     demo.controls["gate"].value = 6.0
     large = [np.ptp(p.vertices, axis=0) for p in gates.get_paths()]
@@ -115,11 +129,13 @@ def test_readout_and_picture_finite_at_the_extremes(leg, gate):
     demo = kf.demos.data_association(seed=0)
     demo.controls["leg"].value = leg
     demo.controls["gate"].value = gate
-    text = readout(demo).lower()
-    assert "nan" not in text and "inf" not in text
-    assert np.isfinite(demo.model.result.mu).all() and np.isfinite(demo.model.result.Sig).all()
-    for path in demo.renderer.dynamic[0].get_paths():  # the gates, however wide
-        assert np.isfinite(path.vertices).all()
+    for _ in range(3):
+        text = readout(demo).lower()
+        assert "nan" not in text and "inf" not in text
+        assert np.isfinite(demo.model.result.mu).all() and np.isfinite(demo.model.result.Sig).all()
+        for path in demo.view.gates.get_paths():  # the gates, however wide
+            assert np.isfinite(path.vertices).all()
+        demo.controls["new_scan"].click()
 
 
 def test_question_3_the_readout_either_side_of_the_leg():
@@ -132,24 +148,23 @@ def test_question_3_the_readout_either_side_of_the_leg():
     assert demo.model.result.match[-1] == 3 and "0.00099 %" in readout(demo)
 
 
-def test_the_estimate_ellipse_is_drawn_over_the_robots_and_every_gate_fits_the_picture():
-    """The teal 2-sigma ellipse is the last artist drawn; the 6-sigma gates (the slider's end) lie inside the axes."""
+def test_the_estimate_ellipse_is_small_and_every_gate_fits_the_picture():
+    """After four readings the 2-sigma ellipse is smaller than the map's robot; the 6-sigma gates fit the axes."""
     demo = kf.demos.data_association(seed=0)
     demo.controls["leg"].value = LEG
     demo.controls["gate"].value = 6.0
-    ellipse = demo.renderer.dynamic[-1]
-    assert isinstance(ellipse, Ellipse) and ellipse.get_edgecolor()[:3] == pytest.approx(to_rgba(palette.ESTIMATE)[:3])
-    assert max(ellipse.width, ellipse.height) < 0.25  # m: after four readings, smaller than the robot triangle
-    (ax,) = demo.renderer.fig.axes
+    ellipse = demo.view.ellipse
+    assert isinstance(ellipse, Ellipse) and max(ellipse.width, ellipse.height) < 0.25
+    ax = demo.renderer.fig.axes[0]
     (x0, x1), (y0, y1) = ax.get_xlim(), ax.get_ylim()
-    for path in demo.renderer.dynamic[0].get_paths():
+    for path in demo.view.gates.get_paths():
         (px0, py0), (px1, py1) = path.vertices.min(axis=0), path.vertices.max(axis=0)
         assert x0 < px0 and px1 < x1 and y0 < py0 and py1 < y1
 
 
 def test_the_leg_label_stands_at_the_leg_reading_only_with_the_leg():
     demo = kf.demos.data_association(seed=0)
-    label = demo.renderer.dynamic[5]
+    label = demo.view.leg_label
     assert label.get_text() == "leg" and not label.get_visible()
     demo.controls["leg"].value = LEG
     point = kf.plots.reading_points(demo.model.scan.mu_bar, demo.model.scan.z[-1])[0]

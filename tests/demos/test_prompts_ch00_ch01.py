@@ -3,6 +3,9 @@ prompt says, asserting what the prose promises."""
 
 from __future__ import annotations
 
+import json
+from pathlib import Path
+
 import numpy as np
 import pytest
 
@@ -282,3 +285,24 @@ def test_ch1_controls_change_the_picture_and_reset_returns_to_the_first_frame():
         demo.controls[key].value = value
     demo.controls["reset"].click()
     assert bytes(demo.image.value) == first
+
+
+def _chapter_function(notebook: str, name: str, body: str | None = None):
+    """The exercise skeleton ``def name(...)`` of a chapter, run as stored, or with ``body`` in place of its raise."""
+    path = Path(__file__).resolve().parents[2] / "notebooks" / notebook
+    cells = ["".join(c["source"]) for c in json.loads(path.read_text(encoding="utf-8"))["cells"]]
+    (source,) = [s for s in cells if s.startswith(f"def {name}(")]
+    if body is not None:
+        source = source.replace('raise NotImplementedError("your turn")', body)
+    space = {"np": np}
+    exec(source, space)
+    return space[name], cells
+
+
+def test_ch0_your_turn_the_skeleton_waits_and_the_square_root_rule_passes():
+    skeleton, cells = _chapter_function("00_the_problem.ipynb", "my_drift_sigma")
+    assert "kf.check.drift_sigma(my_drift_sigma)" in cells
+    waiting = kf.check.drift_sigma(skeleton)
+    assert not waiting.passed and "Not yet" in waiting.message
+    solved, _ = _chapter_function("00_the_problem.ipynb", "my_drift_sigma", "return step_std * np.sqrt(n)")
+    assert kf.check.drift_sigma(solved).passed

@@ -7,8 +7,10 @@ asserts what the prose promises they will see, in the picture where it can
 
 from __future__ import annotations
 
+import json
 import math
 import re
+from pathlib import Path
 
 import numpy as np
 import pytest
@@ -337,3 +339,16 @@ def test_ch04_the_density_label_is_never_cut_off(trust_demo, var_pred, var_meas)
         if text.get_visible() and text.get_text():
             box = text.get_window_extent(renderer)
             assert box.x0 >= 0 and box.x1 <= fig.bbox.x1, f"{text.get_text()!r} at {box}"
+
+
+def test_ch02_your_turn_the_skeleton_waits_and_the_sandwich_passes():
+    path = Path(__file__).resolve().parents[2] / "notebooks" / "02_gaussians.ipynb"
+    cells = ["".join(c["source"]) for c in json.loads(path.read_text(encoding="utf-8"))["cells"]]
+    assert "kf.check.affine_gaussian(my_affine_gaussian)" in cells
+    (source,) = [s for s in cells if s.startswith("def my_affine_gaussian(")]
+    space = {"np": np}
+    exec(source, space)
+    waiting = kf.check.affine_gaussian(space["my_affine_gaussian"])
+    assert not waiting.passed and "Not yet" in waiting.message
+    exec(source.replace('raise NotImplementedError("your turn")', "return A @ mu + b, A @ Sig @ A.T"), space)
+    assert kf.check.affine_gaussian(space["my_affine_gaussian"]).passed

@@ -1,6 +1,6 @@
 """Chapter 9's sigma-points demo: its readout is the package's unscented transform, its
-"truth" is the exact output within Monte-Carlo error, it stays finite at every extreme,
-and each "Try this" prompt of the chapter, driven as the prose says."""
+"truth" is the exact output within Monte-Carlo error, it stays finite at every extreme.
+Its "Try this" prompts are driven in ``tests/demos/test_prompts_ch09.py``."""
 
 from __future__ import annotations
 
@@ -9,12 +9,14 @@ import itertools
 import numpy as np
 import pytest
 from matplotlib.collections import LineCollection, PathCollection
+from matplotlib.colors import to_rgba
 from matplotlib.lines import Line2D
 from matplotlib.patches import Polygon
 from matplotlib.text import Text
 
 import kfcourse as kf
 from kfcourse.demos.sigma_points import OUTPUT_LIMITS, X_RANGE
+from kfcourse.plots import palette
 from kfcourse.plots.curves import ARROW, CUT
 from kfcourse.sim.curves import FUNCTIONS
 
@@ -198,80 +200,31 @@ def test_bad_lam_is_refused_by_the_model():
         model.ukf()
 
 
-# --- the chapter's "Try this" prompts ---------------------------------------------------------------
+def test_the_mean_slider_starts_inside_its_range_and_moves_both_ways():
+    """The first frame's m = 2 (the worked example) is not an end of the slider: a step either way changes
+    the sigma points, the UKF's answer and the picture."""
+    demo = kf.demos.sigma_points(seed=0)
+    m = demo.controls["m"]
+    assert m.min < m.value == 2.0 < m.max and m.max - m.value >= 0.5
+    start = demo.model.ukf(), drawn(demo.view.on_curve).copy()
+    for value in (m.value + m.step, m.value - m.step):
+        m.value = value
+        assert demo.model.m == pytest.approx(value)
+        assert demo.model.ukf()[0] != pytest.approx(start[0][0])
+        assert not np.allclose(drawn(demo.view.on_curve), start[1])
+        m.value = 2.0
 
 
-def test_try_widen_and_narrow_the_input():
-    """Prompt 1: from the first frame drag s to 1.5: the UKF's mean follows the truth to m² + s² = 6.25
-    while the EKF stays at 4, and the UKF's variance (36) falls well short of the exact 46.1 (the exact row).
-    Drag s to 0.1: all three agree."""
-    demo = demo_at(SQUARE, 2.0, 1.5)
-    rows = readout(demo)
-    assert rows["exact"] == pytest.approx((6.25, 46.125), abs=1e-3)
-    assert rows["exact"][1] - rows["UKF"][1] > 10.0
-    assert rows["UKF"] == pytest.approx((6.25, 36.0))
-    assert rows["EKF"] == pytest.approx((4.0, 36.0))
-    assert rows["sampled"][0] == pytest.approx(6.25, abs=0.1)
-    assert rows["sampled"][1] == pytest.approx(46.125, rel=0.05)
-    assert rows["sampled"][1] - rows["UKF"][1] > 8.0
-    demo.controls["s"].value = 0.1
-    rows = readout(demo)
-    for name in ("UKF", "EKF"):
-        assert rows[name][0] == pytest.approx(rows["sampled"][0], abs=0.02)
-        assert rows[name][1] == pytest.approx(rows["sampled"][1], rel=0.05)
-
-
-def test_try_lam_two_makes_the_variance_exact():
-    """Prompt 2: with x², λ = 2 makes the UKF's variance 18, the exact row's 4 m² s² + 2 s⁴, and it stays
-    equal to the exact row at any m and s; λ = 3 overshoots."""
-    demo = demo_at(SQUARE, 2.0, 1.0, 2.0)
-    assert readout(demo)["UKF"] == pytest.approx((5.0, 18.0))
-    assert readout(demo)["UKF"] == readout(demo)["exact"]
-    for m, s in ((-1.0, 0.5), (0.0, 1.5), (1.5, 1.2), (-2.0, 0.05)):
-        demo.controls["m"].value, demo.controls["s"].value = m, s
-        assert readout(demo)["UKF"] == pytest.approx(exact_square(m, s), abs=1e-3)
-        assert readout(demo)["UKF"] == pytest.approx(readout(demo)["exact"], abs=1.01e-3)
-        assert readout(demo)["UKF"][1] == pytest.approx(readout(demo)["sampled"][1], rel=0.06)
-    demo.controls["m"].value, demo.controls["s"].value = 2.0, 1.0
-    demo.controls["lam"].value = 3.0
-    assert readout(demo)["UKF"][1] == pytest.approx(19.0)
-
-
-def test_try_the_bottom_of_the_bowl():
-    """Prompt 3: x², m = 0, s = 1: the EKF says mean 0, variance 0; the UKF at λ = 0 gets the mean 1 right
-    but also says variance 0 (both outer points land at height 1, the centre weighs 0); λ = 2 gives 2."""
-    demo = demo_at(SQUARE, 0.0, 1.0, 0.0)
-    rows = readout(demo)
-    assert rows["EKF"] == (0.0, 0.0)
-    assert rows["UKF"] == pytest.approx((1.0, 0.0), abs=1e-9)
-    assert rows["sampled"] == pytest.approx((1.0, 2.0), rel=0.05)
-    demo.controls["lam"].value = 2.0
-    assert readout(demo)["UKF"] == pytest.approx((1.0, 2.0))
-
-
-def test_try_the_range_to_a_landmark():
-    """Prompt 4: range, m = 2, s = 1: at λ = 2 the UKF's mean and variance agree with the samples to
-    about 0.01, while the EKF's mean is short by about 0.07 and its variance too wide."""
-    demo = demo_at(RANGE, 2.0, 1.0, 2.0)
-    rows = readout(demo)
-    assert rows["UKF"][0] == pytest.approx(rows["sampled"][0], abs=0.01)
-    assert rows["UKF"][1] == pytest.approx(rows["sampled"][1], abs=0.01)
-    assert rows["sampled"][0] - rows["EKF"][0] == pytest.approx(0.07, abs=0.015)
-    assert rows["EKF"][1] > rows["sampled"][1] + 0.1
-
-
-def test_try_sine_at_its_peak_the_ukf_is_an_approximation_too():
-    """Prompt 5: sin x, m = 1.5, s = 1.5: the EKF claims about 1.0 and is very sure; the UKF at λ = 0
-    says about 0.07, too low, with a tiny variance (its outer points land near 0.0 and 0.14); at λ = 2 its
-    mean (0.38) is close to the samples' 0.33, its variance too wide."""
-    demo = demo_at(SINE, 1.5, 1.5, 0.0)
-    rows = readout(demo)
-    assert rows["EKF"][0] == pytest.approx(1.0, abs=0.01)
-    assert rows["sampled"][0] == pytest.approx(0.33, abs=0.02)
-    assert rows["UKF"][0] == pytest.approx(0.07, abs=0.01) and rows["UKF"][1] < 0.01
-    assert rows["sampled"][1] > 0.3
-    demo.controls["lam"].value = 2.0
-    rows = readout(demo)
-    assert rows["UKF"][0] == pytest.approx(0.38, abs=0.01)
-    assert abs(rows["UKF"][0] - rows["sampled"][0]) < 0.1
-    assert rows["UKF"][1] > rows["sampled"][1] * 1.5
+def test_the_ekf_is_teal_dashed_and_the_ukf_teal_solid():
+    """Chapter 9 draws the EKF beside the UKF: both estimates (teal), the EKF dashed, its tangent too; no orange."""
+    demo = kf.demos.sigma_points(seed=0)
+    teal = to_rgba(palette.ESTIMATE)
+    view = demo.view
+    for line in (view.tangent, view.ekf):
+        assert to_rgba(line.get_color()) == pytest.approx(teal) and line.get_linestyle() == "--"
+    assert to_rgba(view.ukf.get_color()) == pytest.approx(teal) and view.ukf.get_linestyle() == "-"
+    orange = to_rgba(palette.MEASUREMENT)
+    for artist in demo.renderer.dynamic:
+        if isinstance(artist, Line2D):
+            assert to_rgba(artist.get_color()) != pytest.approx(orange)
+    assert "orange" not in demo.children[0].value and "teal dashed" in demo.children[0].value

@@ -28,18 +28,19 @@ def test_moments_chart_draws_the_samples_and_both_gaussians():
     heights = np.array([p.get_height() for p in ax.patches])
     widths = np.array([p.get_width() for p in ax.patches])
     assert np.sum(heights * widths) == pytest.approx(np.mean((y >= -1) & (y <= 25)), rel=1e-6)  # density of all y
-    for colour, mean in ((palette.ESTIMATE, 5.0), (palette.MEASUREMENT, 4.0)):
-        curve, mean_line = lines_of(ax, colour)
+    assert not lines_of(ax, palette.MEASUREMENT)  # no orange: the EKF is an estimate, teal dashed
+    for style, mean in (("-", 5.0), ("--", 4.0)):  # the UKF solid, the EKF dashed
+        curve, mean_line = [line for line in lines_of(ax, palette.ESTIMATE) if line.get_linestyle() == style]
         grid, dens = curve.get_data()
         assert grid[np.argmax(dens)] == pytest.approx(mean, abs=0.05)
         mass = 0.5 * (math.erf((25 - mean) / (4 * math.sqrt(2))) - math.erf((-1 - mean) / (4 * math.sqrt(2))))
         assert np.trapezoid(dens, grid) == pytest.approx(mass, abs=1e-3)  # N(mean, 16) over (-1, 25)
         assert np.allclose(mean_line.get_xdata(), mean)
     assert "UKF N(5, 16)" in [t.get_text() for t in ax.get_legend().get_texts()]
-    # The samples' mean (here on the UKF's) is a wide band under the filters' dotted lines: all three show.
+    # The samples' mean (here on the UKF's) is a wide band under the filters' thin lines: all three show.
     (band,) = [line for line in ax.get_lines() if line.get_label() == "samples' mean"]
     assert np.allclose(band.get_xdata(), y.mean()) and abs(y.mean() - 5.0) < 0.05
-    (_, ukf_mean) = lines_of(ax, palette.ESTIMATE)
+    (_, ukf_mean) = [line for line in lines_of(ax, palette.ESTIMATE) if line.get_linestyle() == "-"]
     assert band.get_linewidth() > 3 * ukf_mean.get_linewidth() and band.get_zorder() < ukf_mean.get_zorder()
     png = fig._repr_png_()
     assert png[:4] == b"\x89PNG" and len(png) > 5_000
@@ -56,16 +57,22 @@ def test_moments_chart_refuses_bad_input():
 
 
 def test_comparison_chart_draws_both_estimates_and_errors(runs):
+    """Both teal: the UKF solid (wide, pale), the EKF dashed over it; no orange."""
     ekf, ukf = runs
     fig = kf.plots.filter_comparison_chart(ekf, ukf)
     ax_map, ax_e = fig.axes
-    (e_path,), (u_path,) = lines_of(ax_map, palette.MEASUREMENT), lines_of(ax_map, palette.ESTIMATE)
-    assert np.allclose(e_path.get_xydata(), ekf.mu[:, :2]) and np.allclose(u_path.get_xydata(), ukf.mu[:, :2])
-    (e_err,), (u_err,) = lines_of(ax_e, palette.MEASUREMENT), lines_of(ax_e, palette.ESTIMATE)
-    assert np.allclose(e_err.get_ydata(), ekf.error) and np.allclose(u_err.get_ydata(), ukf.error)
+    for ax, ekf_data, ukf_data in ((ax_map, ekf.mu[:, :2], ukf.mu[:, :2]), (ax_e, ekf.error, ukf.error)):
+        assert not lines_of(ax, palette.MEASUREMENT)
+        (u_line, e_line) = lines_of(ax, palette.ESTIMATE)  # the UKF first, the EKF drawn over it
+        assert u_line.get_linestyle() == "-" and e_line.get_linestyle() == "--"
+        assert u_line.get_linewidth() > e_line.get_linewidth()
+        got = [line.get_xydata() if ax is ax_map else line.get_ydata() for line in (e_line, u_line)]
+        assert np.allclose(got[0], ekf_data) and np.allclose(got[1], ukf_data)
     labels = [t.get_text() for t in ax_e.get_legend().get_texts()]
-    assert labels[0] == f"EKF, RMS {np.sqrt(np.mean(ekf.error**2)):.3f} m"
-    assert labels[1] == f"UKF, RMS {np.sqrt(np.mean(ukf.error**2)):.3f} m"
+    assert labels == [
+        f"UKF, RMS {np.sqrt(np.mean(ukf.error**2)):.3f} m",
+        f"EKF, RMS {np.sqrt(np.mean(ekf.error**2)):.3f} m",
+    ]
     png = fig._repr_png_()
     assert png[:4] == b"\x89PNG" and len(png) > 10_000
 

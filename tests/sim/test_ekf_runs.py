@@ -52,3 +52,18 @@ def test_same_seed_same_run_and_bad_input():
         kf.sim.run_ekf(flipped="yes")
     with pytest.raises(ValueError, match="seed"):
         kf.sim.run_ekf(seed=-1)
+
+
+def test_the_comparison_table_counts_the_seeds_the_ukf_wins():
+    from types import SimpleNamespace
+
+    def run(errors, inside):
+        return SimpleNamespace(error=np.array(errors), share_inside=inside)
+
+    runs = {0: (run([1.0, 1.0], 0.4), run([0.5, 0.5], 0.7)), 7: (run([0.2, 0.2], 0.9), run([0.3, 0.3], 0.8))}
+    table = kf.sim.ekf_runs.comparison_table(runs)
+    lines = table.splitlines()
+    assert lines[0].split()[:3] == ["seed", "EKF", "RMS"]
+    assert lines[2].split() == ["0", "1.00", "m", "0.50", "m", "40%", "70%"]
+    assert lines[3].split()[0] == "7"
+    assert lines[-1] == "the UKF's RMS error is smaller in 1 of 2 seeds"
