@@ -27,7 +27,7 @@ def linearization(seed: int = 0) -> Demo:
     model = GaussianThroughCurve(seed=seed, m=1.0, s=0.5, function="x²", n_samples=N_SAMPLES)
     view = linearization_view(OUTPUT_LIMITS, X_RANGE)
     caption = (
-        "<b>Linearization.</b> Purple: the input N(m, s²). Black: f; orange dashed: its tangent at m. "
+        "<b>Linearization.</b> Purple: the input N(m, s²). Black: f; teal dashed: its tangent at m (the EKF). "
         f"Right, on the output axis: grey, the true output ({N_SAMPLES} seeded draws through f); teal, the EKF's "
         "N(f(m), f'(m)² s²); dotted, their means. Pick f, drag m and s, compare the numbers."
     )

@@ -146,7 +146,7 @@ class LinearizationView:
     output_limits: dict  #: function name -> (low, high) of the output axis
     bins: int  #: bins of the sampled output's histogram
     curve: Line2D  #: f
-    tangent: Line2D  #: f(m) + f'(m) (x - m), orange dashed
+    tangent: Line2D  #: f(m) + f'(m) (x - m), teal dashed (the EKF's linearization)
     point: Line2D  #: (m, f(m))
     input_density: Line2D  #: N(m, s²), purple
     sampled: Line2D  #: histogram of the true output, grey
@@ -204,8 +204,8 @@ def linearization_view(
     ax_f, ax_out, ax_in = panels.ax_f, panels.ax_out, panels.ax_in
     x = np.linspace(*x_range, 400)
     (curve,) = ax_f.plot(x, x, color=palette.INK, lw=1.5, label="f(x)")
-    (tangent,) = ax_f.plot(x, x, color=palette.MEASUREMENT, lw=1.8, ls="--", label="tangent at m")
-    (point,) = ax_f.plot([0], [0], "o", color=palette.MEASUREMENT, ms=6)
+    (tangent,) = ax_f.plot(x, x, color=palette.ESTIMATE, lw=1.8, ls="--", label="EKF: tangent at m")
+    (point,) = ax_f.plot([0], [0], "o", color=palette.ESTIMATE, ms=6)
     ax_f.legend(loc="upper center", fontsize=9)  # the middle top: clear of every curve's arms
     (density,) = ax_in.plot(x, x, color=palette.PREDICTION, lw=2)
     (sampled,) = ax_out.plot([0, 1], [0, 1], color=palette.TRUTH, lw=1.5, label="sampled")
