@@ -19,7 +19,8 @@ ROOT = Path(__file__).resolve().parents[1]
 NOTEBOOKS = sorted((ROOT / "notebooks").glob("*.ipynb"))
 MARK = "# NBVAL_CHECK_OUTPUT"
 WIDGET_VIEW = "application/vnd.jupyter.widget-view+json"
-EXTRA = {"solutions.ipynb"}  # not a chapter: the exercises' solutions, a section per chapter
+EXTRA = {"solutions.ipynb", "notation.ipynb"}  # not chapters: the exercises' solutions, the course's symbols
+PROSE_ONLY = {"notation.ipynb"}  # no code, so no worked number to check
 
 
 def cells(path: Path):
@@ -33,7 +34,7 @@ def test_there_are_notebooks():
         assert re.fullmatch(r"\d\d_[a-z0-9_]+\.ipynb", path.name) or path.name in EXTRA, path.name
 
 
-@pytest.mark.parametrize("path", NOTEBOOKS, ids=lambda p: p.stem)
+@pytest.mark.parametrize("path", [p for p in NOTEBOOKS if p.name not in PROSE_ONLY], ids=lambda p: p.stem)
 def test_checked_cells_store_output_and_count(path):
     _, cs = cells(path)
     checked = [c for c in cs if c["cell_type"] == "code" and MARK in "".join(c["source"])]
@@ -86,3 +87,14 @@ def test_structure(path):
         assert (path.parent / target).exists(), f"broken link to {target}"
     everything = "\n".join("".join(c["source"]) for c in cs)
     assert "TODO" not in everything and "FIXME" not in everything
+
+
+def test_the_notation_table_is_prose_and_every_chapter_links_it():
+    _, cs = cells(ROOT / "notebooks" / "notation.ipynb")
+    assert cs and all(c["cell_type"] == "markdown" for c in cs)
+    for path in NOTEBOOKS:
+        if path.name in EXTRA:
+            continue
+        _, cs = cells(path)
+        text = "\n".join("".join(c["source"]) for c in cs if c["cell_type"] == "markdown")
+        assert re.search(r"\]\(\s*notation\.ipynb\s*\)", text), f"{path.name} does not link the notation table"

@@ -4,10 +4,11 @@
     python tools/build_site.py --out DIR --notebooks DIR
 
 Every ``notebooks/NN_*.ipynb`` becomes ``NN_*.html``; the notation table (``notation.ipynb``)
-and the solutions (``solutions.ipynb``), where there are, come last.  The notebooks are stored clean, so each one is executed here, with nbclient
-and the course's own kernel.  nbconvert's JupyterLab template turns it into HTML; equations are
-typeset in the reader's browser by a copy of MathJax 2.7 from the ``jupyter-server-mathjax``
-package (requirements-dev.txt), served from ``_static/mathjax`` beside the pages: no CDN.
+and the solutions (``solutions.ipynb``), where there are, come last.  The notebooks are stored
+clean, so each one is executed here, with nbclient and the course's own kernel.  nbconvert's
+JupyterLab template turns it into HTML; equations are typeset in the reader's browser by a copy
+of MathJax 2.7 from the ``jupyter-server-mathjax`` package (requirements-dev.txt), served from
+``_static/mathjax`` beside the pages: no CDN.
 
 A page has no kernel, so a demo's live widget cannot show there.  A demo shown as the last
 value of a cell also hands the notebook a PNG of the picture it shows at first

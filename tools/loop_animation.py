@@ -1,9 +1,9 @@
 """Make the animated picture of chapter 10's landmark loop for the README.
 
-One lap with the sensor blind for a stretch (the demo's dropout window) and
-junk odometry (process noise at the demo's maximum, chapter 10's third prompt):
-the ellipse balloons while the robot drives on odometry alone and collapses at
-the first reading back.  Drawn from the demo's own model and view (the map and the
+One lap of chapter 10's second prompt, the lesson's recipe: noisy odometry
+(process noise 3.2), the sensor blind from step 20 to step 89, then one
+landmark back: the ellipse balloons while the robot drives on odometry alone
+and collapses at the single reading of step 90.  Drawn from the demo's own model and view (the map and the
 error strips), one picture per step as Run plays them, written as an animated GIF
 with Pillow.
 
@@ -28,14 +28,17 @@ FRAME_MS = 80  # ms per picture: one step of 0.2 s, 2.5 times faster than real t
 HOLD_MS = 1500  # ms the last picture stays before the loop starts again
 DPI = 80
 MAX_BYTES = 2_000_000
-MOTION_NOISE = 10.0  # the process-noise slider at its maximum
+MOTION_NOISE = 3.2  # the process-noise slider of the recipe
+BLIND = (20, 90)  # dropout pressed at step 20, and again at step 90
 
 
-def prompt_3() -> LoopModel:
-    """The demo's model at chapter 10's third prompt: dropout on, process noise at its maximum."""
+def recipe() -> LoopModel:
+    """The demo's model at chapter 10's second prompt, set as a student sets it: process noise, then
+    dropout pressed at the blind stretch's first step and again at the step sight comes back."""
     model = LoopModel(seed=0)
-    model.set_dropout(True)
     model.set_motion_noise(MOTION_NOISE)
+    for model.frame, on in zip(BLIND, (True, False), strict=True):
+        model.set_dropout(on)
     return model
 
 
@@ -61,7 +64,7 @@ def frames(model) -> list[Image.Image]:
 
 
 def main(out: Path = OUT) -> None:
-    pictures = frames(prompt_3())
+    pictures = frames(recipe())
     montage = Image.new("RGB", (pictures[0].width, pictures[0].height * 8))  # one palette from across the lap
     for i, k in enumerate(range(0, len(pictures), -(-len(pictures) // 8))):
         montage.paste(pictures[k], (0, i * pictures[0].height))

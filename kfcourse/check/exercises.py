@@ -222,7 +222,7 @@ def cv_model(student_fn, seed: int = 0) -> CheckResult:
     for _ in range(6):
         cases.append(Case("random", dt=float(rng.uniform(0.05, 3.0)), accel_var=float(rng.uniform(0.1, 50.0))))
     where = (
-        "chapter 6: F = [[I, Δt I], [0, I]] for the state [px, py, vx, vy], and R = σa² G Gᵀ with G = [½Δt² I; Δt I]"
+        "chapter 6: F = [[I, Δt I], [0, I]] for the state [px, py, vx, vy], and R = σa² Γ Γᵀ with Γ = [½Δt² I; Δt I]"
     )
     position = "An acceleration a held for Δt moves the position by ½ a Δt² (and the velocity by a Δt)"
     variants = [
@@ -244,18 +244,18 @@ def cv_model(student_fn, seed: int = 0) -> CheckResult:
         Variant(
             "R_diagonal",
             lambda dt, q: _cv_with(dt, q, diagonal=True),
-            "One acceleration moves position and velocity together, so R = σa² G Gᵀ has the cross terms "
+            "One acceleration moves position and velocity together, so R = σa² Γ Γᵀ has the cross terms "
             "σa² Δt³/2 between p_x and v_x (and p_y and v_y).",
         ),
         Variant(
             "std_not_var",
             lambda dt, q: _cv_with(dt, q, var=np.sqrt(q)),
-            "accel_var is already the variance σa²: R = σa² G Gᵀ takes it as it is, no square root.",
+            "accel_var is already the variance σa²: R = σa² Γ Γᵀ takes it as it is, no square root.",
         ),
         Variant(
             "std_not_var",
             lambda dt, q: _cv_with(dt, q, var=q**2),
-            "accel_var is already the variance σa²: R = σa² G Gᵀ takes it as it is, not squared.",
+            "accel_var is already the variance σa²: R = σa² Γ Γᵀ takes it as it is, not squared.",
         ),
     ]
     _function(student_fn, "cv_model")

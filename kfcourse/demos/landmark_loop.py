@@ -8,15 +8,18 @@ import numpy as np
 from ..plots import palette
 from ..plots.loop import loop_view, update_loop_view
 from ..plots.style import FigureRenderer
+from ..sim.localization import HONEST_NEES
 from ..sim.localization import landmark_loop as run_loop
 from ._base import Demo, button, slider
 
-DROPOUT = (40, 70)  # steps k with t0 <= k < t1 without readings when dropout is on (6 s of a 24 s lap)
 FIRST_FRAME = 60  # the step shown first: on the top straight, two landmarks in view
-NOISE_RANGE = (-1.0, 1.0)  # log10 of the noise scales the sliders reach: 0.1x to 10x
-FILTERS = ("EKF", "UKF")  # the choices shown; the run takes them in lower case
+NOISE_RANGE = (-1.0, 1.0)  # log10 of the world's noise scales the sliders reach: 0.1x to 10x
+TRUST_RANGE = (-2.0, 2.0)  # log10 of the filter's R and Q against the world's: 0.01x to 100x
+FILTERS = ("EKF", "UKF")  # the course's filters; the run takes them in lower case
+YOURS = "yours"  # the choice that runs the student's own step
 IMAGE_WIDTH = 500  # CSS px at most: beside the column, within a laptop's 848 px; 1.2 times as tall as wide
 COLUMN_WIDTH = 340  # CSS px: the controls and the readout beside the picture
+BUTTONS = ["dropout", "kidnap", "new"]  # one row of the column: 120 + 100 + 100 px
 GATE = 4.0  # the filter rejects a reading more than 4 standard deviations from its prediction (chapter 8)
 
 
@@ -26,42 +29,59 @@ class LoopModel:
     Attributes
     ----------
     seed : int
-    filter : {"ekf", "ukf"}
+        The world's noise; *New run* takes the next one.
+    filter : {"ekf", "ukf", "yours"}
+    step : callable or None
+        The student's own step function, run when ``filter`` is "yours".
     motion_noise, sensor_noise : float
-        Scales of the odometry noise and its R, and of the reading noise and its Q.
-    dropout : bool
-        Blind the sensor for the steps ``DROPOUT``.
+        Scales of the world's odometry noise and reading noise (standard deviations).
+    trust_motion, trust_sensor : float
+        The R and the Q the filter assumes, as multiples of the world's true ones (1: honest).
+    blind : (int, int) or None
+        The sensor is blind for steps t0 <= k < t1; the step after, it reads the nearest landmark only.
     kidnap : int or None
         The step at which the true robot is carried off, or None.
     run : LoopRun
         ``kf.sim.landmark_loop`` with these settings; recomputed once per change.
+    failure : str or None
+        What went wrong in the student's step; the run is then the course's EKF.
     frame : int
         The step shown.
     """
 
-    def __init__(self, seed: int = 0):
-        self.seed = seed
-        self.filter = "ekf"
-        self.motion_noise = 1.0
-        self.sensor_noise = 1.0
-        self.dropout = False
-        self.kidnap = None
+    def __init__(self, seed: int = 0, step=None):
+        if step is not None and not callable(step):
+            raise ValueError(f"filter must be your step function (or None for the course's EKF), got {step!r}")
+        self.seed, self.step = seed, step
+        self.filter = YOURS if step is not None else "ekf"
+        self.motion_noise = self.sensor_noise = self.trust_motion = self.trust_sensor = 1.0
+        self.blind = self.kidnap = None
         self.frame = FIRST_FRAME
         self._rerun()
 
     def _rerun(self) -> None:
-        self.run = run_loop(
-            self.seed,
-            filter=self.filter,
-            dropout=DROPOUT if self.dropout else None,
-            motion_noise=self.motion_noise,
-            sensor_noise=self.sensor_noise,
-            kidnap=self.kidnap,
-            gate=GATE,
-        )
+        settings = {
+            "dropout": self.blind,
+            "one_back": True,
+            "motion_noise": self.motion_noise,
+            "sensor_noise": self.sensor_noise,
+            "filter_motion_noise": self.motion_noise * np.sqrt(self.trust_motion),  # R scales as its std squared
+            "filter_sensor_noise": self.sensor_noise * np.sqrt(self.trust_sensor),
+            "kidnap": self.kidnap,
+            "gate": GATE,
+        }
+        self.failure = None
+        if self.filter != YOURS:
+            self.run = run_loop(self.seed, filter=self.filter, **settings)
+            return
+        try:
+            self.run = run_loop(self.seed, filter=self.step, **settings)
+        except ValueError as err:  # the student's step broke: say how, and show the course's EKF meanwhile
+            self.failure = str(err)
+            self.run = run_loop(self.seed, filter="ekf", **settings)
 
     def set_filter(self, name: str) -> None:
-        self.filter = name.lower()
+        self.filter = name if name == YOURS else name.lower()
         self._rerun()
 
     def set_motion_noise(self, scale: float) -> None:
@@ -72,8 +92,21 @@ class LoopModel:
         self.sensor_noise = float(scale)
         self._rerun()
 
+    def set_trust_motion(self, ratio: float) -> None:
+        self.trust_motion = float(ratio)
+        self._rerun()
+
+    def set_trust_sensor(self, ratio: float) -> None:
+        self.trust_sensor = float(ratio)
+        self._rerun()
+
     def set_dropout(self, on: bool) -> None:
-        self.dropout = bool(on)
+        """On: the sensor goes blind at the step shown, until turned off.  Off: sight comes back at the
+        step shown, the nearest landmark first (nothing stays blind if that is not after the start)."""
+        if on:
+            self.blind = (self.frame, self.run.t.size)
+        elif self.blind is not None:
+            self.blind = (self.blind[0], self.frame) if self.frame > self.blind[0] else None
         self._rerun()
 
     def toggle_kidnap(self) -> None:
@@ -81,9 +114,19 @@ class LoopModel:
         self.kidnap = self.frame if self.kidnap is None else None
         self._rerun()
 
-    def blind(self) -> bool:
-        """True if the sensor is blinded at the step shown."""
-        return self.dropout and DROPOUT[0] <= self.frame < DROPOUT[1]
+    def new_run(self) -> None:
+        """New noise: the next seed, every setting kept."""
+        self.seed += 1
+        self._rerun()
+
+    @property
+    def dropout(self) -> bool:
+        """True if a blind stretch is set (the sensor is blind somewhere in the lap)."""
+        return self.blind is not None
+
+    def is_blind(self) -> bool:
+        """True if the sensor is blind at the step shown."""
+        return self.blind is not None and self.blind[0] <= self.frame < self.blind[1]
 
     def areas(self) -> tuple[float, float]:
         """Area of the 1-sigma position ellipse before and after the readings of the step shown (m²)."""
@@ -96,64 +139,76 @@ class LoopModel:
 
 
 def _readout(model: LoopModel) -> str:
-    """The lines beside the picture: what the filter did at the step shown, its error and its doubt."""
+    """The lines beside the picture: what the filter did at the step shown, its error, its doubt, its honesty."""
     run, k = model.run, model.frame
     used, rejected = int(np.count_nonzero(run.used[k])), int(np.count_nonzero(run.rejected[k]))
-    if model.blind():
+    if model.is_blind():
         sight = "<b>sensor blind</b>"
     else:
-        sight = f"uses {used} reading{'s' if used != 1 else ''}"
+        back = " (sight back: the nearest landmark only)" if model.blind and k == model.blind[1] else ""
+        sight = f"uses {used} reading{'s' if used != 1 else ''}{back}"
         if rejected:
             sight += f", <span style='color:{palette.MEASUREMENT}'><b>rejects {rejected}</b></span> (outside the gate)"
     before, after = model.areas()
     shrink = f" (×{after / before:#.2g})" if before > 0 else ""  # two digits however small: ×0.10, ×0.0022
     inside = "inside" if run.inside[k] else "<b>outside</b>"
     kidnapped = f"<br><b>kidnapped</b> at step {model.kidnap}" if model.kidnap is not None else ""
+    nees, verdict = run.honesty()
+    failed = f"<b>Your filter failed</b>: {model.failure}. Shown: the course's EKF.<br>" if model.failure else ""
     return (
-        f"<div style='font-size:13px;line-height:1.5'>step {k}, t = {run.t[k]:.1f} s: {sight}{kidnapped}<br>"
+        f"<div style='font-size:13px;line-height:1.5'>{failed}step {k}, t = {run.t[k]:.1f} s, run {model.seed}: "
+        f"{sight}{kidnapped}<br>"
         f"<span style='color:{palette.ESTIMATE}'>position error {run.error[k]:.3f} m</span><br>"
         f"1σ area: <span style='color:{palette.PREDICTION}'>{before:.3g}</span> before the readings → "
         f"<span style='color:{palette.ESTIMATE}'>{after:.3g} m²</span>{shrink}<br>"
-        f"truth {inside} the 3σ ellipse ({model.share_inside():.0%} of steps so far)</div>"
+        f"truth {inside} the 3σ ellipse ({model.share_inside():.0%} of steps so far)<br>"
+        f"this lap, the filter is <b>{verdict}</b>: mean NEES {nees:.2g} "
+        f"(honest: {HONEST_NEES[0]:g} to {HONEST_NEES[1]:g}, 2 on average)</div>"
     )
 
 
-def _controls(model: LoopModel, kidnap: widgets.Button) -> dict:
-    """The noise sliders, the dropout toggle, the filter's choice and the ``kidnap`` button, bound to the model.
+def _draw(view, model: LoopModel, readout: widgets.HTML, kidnap: widgets.Button) -> None:
+    update_loop_view(view, model)
+    readout.value = _readout(model)
+    kidnap.description = "Undo kidnap" if model.kidnap is not None else "Kidnap"
 
-    Each noise change reruns the whole lap (30 to 60 ms): once, where the slider is let go.
+
+def _controls(model: LoopModel, kidnap: widgets.Button) -> dict:
+    """The world's noise, the filter's trust, dropout, kidnap, new run and the filter's choice, bound to the model.
+
+    Each change reruns the whole lap (30 to 80 ms): a slider once, where it is let go.
     """
     lo, hi = NOISE_RANGE
+    tlo, thi = TRUST_RANGE
+    log = {"readout_format": ".2g", "continuous_update": False, "base": 10}
+    motion = slider(widgets.FloatLogSlider, "process noise ×", 1.0, lo, hi, 0.05, **log)
+    sensor = slider(widgets.FloatLogSlider, "measurement noise ×", 1.0, lo, hi, 0.05, **log)
+    R, Q = (slider(widgets.FloatLogSlider, f"filter's {x} ×", 1.0, tlo, thi, 0.1, **log) for x in "RQ")
+    for half in (R, Q):
+        half.layout.width = f"{COLUMN_WIDTH // 2 - 4}px"  # the filter's trust: two sliders share a row
+    dropout = widgets.ToggleButton(
+        description="dropout",
+        icon="eye-slash",
+        tooltip="On: the sensor is blind from the step shown. Off: sight comes back at the step shown.",
+        layout=widgets.Layout(width="120px"),
+    )
+    new = button("New run", icon="refresh", tooltip="New noise: the next seed")
+    new.layout.width = kidnap.layout.width = "100px"
+    choice = widgets.ToggleButtons(
+        options=[YOURS, *FILTERS] if model.step is not None else list(FILTERS),
+        value=YOURS if model.filter == YOURS else model.filter.upper(),
+        description="filter",
+        style={"button_width": "60px", "description_width": "40px"},
+    )
     return {
-        "motion": (
-            slider(widgets.FloatLogSlider, "process noise ×", 1.0, lo, hi, 0.05, ".2g", False, base=10),
-            model.set_motion_noise,
-        ),
-        "sensor": (
-            slider(widgets.FloatLogSlider, "measurement noise ×", 1.0, lo, hi, 0.05, ".2g", False, base=10),
-            model.set_sensor_noise,
-        ),
-        "dropout": (
-            widgets.ToggleButton(
-                value=False,
-                description="sensor dropout",
-                icon="eye-slash",
-                tooltip=f"Blind the sensor for steps {DROPOUT[0]} to {DROPOUT[1] - 1}",
-                layout=widgets.Layout(width="150px"),
-            ),
-            model.set_dropout,
-        ),
-        "filter": (
-            widgets.ToggleButtons(
-                options=list(FILTERS),
-                tooltips=["extended Kalman filter: Jacobians", "unscented Kalman filter: sigma points"],
-                value=model.filter.upper(),
-                description="filter",
-                style={"button_width": "60px", "description_width": "40px"},
-            ),
-            model.set_filter,
-        ),
+        "motion": (motion, model.set_motion_noise),
+        "sensor": (sensor, model.set_sensor_noise),
+        "trust_motion": (R, model.set_trust_motion),
+        "trust_sensor": (Q, model.set_trust_sensor),
+        "dropout": (dropout, model.set_dropout),
         "kidnap": (kidnap, model.toggle_kidnap),
+        "new": (new, model.new_run),
+        "filter": (choice, model.set_filter),
     }
 
 
@@ -161,47 +216,42 @@ CAPTION = (
     "<b>Landmark loop.</b> Purple squares: landmarks. Grey: true path and robot. Teal: the filter's estimate, "
     "trail, 2σ ellipse (dashed purple: before this step's readings) and beams to the readings it uses; dashed "
     "orange: readings it rejects (over 4σ off). Strips: x and y error (truth − estimate, m) in the filter's ±2σ "
-    "band; grey: blind steps; dotted: the kidnap. <i>process</i> / <i>measurement noise</i> scale the odometry's "
-    f"noise and R / the readings' noise and Q; <i>sensor dropout</i> blinds steps {DROPOUT[0]}–{DROPOUT[1] - 1}; "
-    "<i>Kidnap</i> moves the true robot half a lap on."
+    "band; grey: blind steps; dotted: the kidnap. <i>process</i> / <i>measurement noise</i>: the world's odometry "
+    "and sensor noise. <i>filter's R</i> / <i>Q</i>: the noise the filter assumes, times the true one (1: honest). "
+    "<i>dropout</i>: the sensor is blind from the step shown until pressed again; sight returns one landmark first. "
+    "<i>Kidnap</i> moves the true robot half a lap on; <i>New run</i>: new noise."
 )
 
 
-def landmark_loop(seed: int = 0) -> Demo:
-    """Demo "landmark loop" (chapter 10): EKF (or UKF) localization round a map of landmarks.
+def landmark_loop(seed: int = 0, filter=None) -> Demo:
+    """Demo "landmark loop" (chapter 10): localization round a map of landmarks, by the course's EKF or UKF
+    or by your own step ``filter(mu, Sig, u, z, landmarks, dt, M, Q, gate) -> (mu, Sig, used)``.
 
-    Run animates the lap, the step slider scrubs it; two log sliders scale the
-    odometry noise (and the filter's R) and the reading noise (and its Q); a
-    toggle blinds the sensor for a fixed stretch of steps; another picks the
-    filter; *Kidnap* carries the true robot half a lap on at the step shown.
+    Run animates the lap, the step slider scrubs it.  Two log sliders scale the world's
+    odometry and reading noise, two more the R and Q the filter assumes; *sensor dropout*
+    blinds the sensor from the step shown until it is pressed again; *Kidnap* carries the
+    true robot half a lap on at the step shown; *New run* draws new noise.  A step
+    function that fails is named in the readout, and the course's EKF is shown meanwhile.
     Every change reruns the whole lap once; moving in time only redraws.
-    The controls and the readout stand beside the picture, so that a laptop
-    shows them and the whole map at once.
 
     Returns
     -------
     Demo (an ipywidgets.VBox)
     """
-    model = LoopModel(seed)
+    model = LoopModel(seed, filter)
     view = loop_view(model)
     readout = widgets.HTML(layout=widgets.Layout(width=f"{COLUMN_WIDTH}px"))
     readout.add_class("kf-readout")
     kidnap = button("Kidnap", icon="random", tooltip="Carry the true robot half a lap on at this step")
-
-    def draw() -> None:
-        update_loop_view(view, model)
-        readout.value = _readout(model)
-        kidnap.description = "Undo kidnap" if model.kidnap is not None else "Kidnap"
-
     demo = Demo(
         name="landmark-loop",
         caption=CAPTION,
         model=model,
         renderer=FigureRenderer(view.fig, view.moving),
-        draw=draw,
+        draw=lambda: _draw(view, model, readout, kidnap),
         frames=model.run.t.size,
         controls=_controls(model, kidnap),
-        beside=[["play", "frame"], "motion", "sensor", ["dropout", "kidnap"], "filter", readout],
+        beside=[["play", "frame"], "motion", "sensor", ["trust_motion", "trust_sensor"], BUTTONS, "filter", readout],
         display_width=IMAGE_WIDTH,
     )
     demo.controls["frame"].layout.width = f"{COLUMN_WIDTH - 90}px"  # beside Run (90 px), in the column's width

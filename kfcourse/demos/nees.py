@@ -9,7 +9,7 @@ import numpy as np
 from ..plots.style import FigureRenderer
 from ..plots.tracking import nees_view, update_nees_view
 from ..sim.target import filter_tracks, nees, nees_band, simulate_tracks
-from ._base import Demo, slider
+from ._base import Demo, button, slider
 
 N_TRACKS = 200
 N_STEPS = 60
@@ -25,7 +25,7 @@ class NeesPanel:
     Attributes
     ----------
     batch : TrackBatch
-        The world (true noise ``batch.R``, ``batch.Q``); it never changes.
+        The world (true noise ``batch.R``, ``batch.Q``); mistuning never changes it, ``new_run`` draws another.
     which : str
         ``"R"`` or ``"Q"``: the noise the filter gets wrong.
     factor : float
@@ -41,6 +41,11 @@ class NeesPanel:
         self.band = nees_band(N_TRACKS, DOF, LEVEL)
         self.which = "Q"
         self.factor = 1.0
+        self._refilter()
+
+    def new_run(self) -> None:
+        """New tracks (the next seed), the same mistuning."""
+        self.batch = simulate_tracks(N_TRACKS, N_STEPS, seed=self.batch.seed + 1)
         self._refilter()
 
     def assumed(self) -> tuple[np.ndarray, np.ndarray]:
@@ -81,8 +86,9 @@ def _readout(model: NeesPanel) -> str:
     low, high = model.band
     below, inside, above = model.fractions()
     return (
-        f"<div style='font-size:13px;line-height:1.5'>filter assumes {model.factor:.3g} × the true "
-        f"{model.which}: mean ε̄ = {model.avg_nees.mean():.2f} (band {low:.2f} to {high:.2f})<br>"
+        f"<div style='font-size:13px;line-height:1.5'>run {model.batch.seed}: filter assumes "
+        f"{model.factor:.3g} × the true "
+        f"{model.which}: mean NEES = {model.avg_nees.mean():.2f} (band {low:.2f} to {high:.2f})<br>"
         f"time steps below / inside / above the band: {below:.0%} / {inside:.0%} / {above:.0%}<br>"
         f"<b>{model.verdict()}</b></div>"
     )
@@ -107,9 +113,10 @@ def nees_panel(seed: int = 0) -> Demo:
 
     caption = (
         f"<b>Is the ellipse honest?</b> {N_TRACKS} targets moving exactly as the constant-velocity model says, each "
-        "tracked by its own filter. Teal: their average NEES ε = (x − μ)ᵀ Σ⁻¹ (x − μ) at each step (log scale); grey: "
+        "tracked by its own filter. Teal: their average NEES = (x − μ)ᵀ Σ⁻¹ (x − μ) at each step (log scale); grey: "
         f"where it stays 95 % of the time if every Σ is honest; dashed: {DOF}, its expected value. The filter assumes "
-        "<i>factor</i> × the true R (process) or Q (measurement), as <i>mistune</i> picks."
+        "<i>factor</i> × the true R (process) or Q (measurement), as <i>mistune</i> picks; <i>New run</i> draws new "
+        "tracks."
     )
     tips = ["process noise R", "measurement noise Q"]
     which = widgets.ToggleButtons(
@@ -123,8 +130,12 @@ def nees_panel(seed: int = 0) -> Demo:
         model=model,
         renderer=FigureRenderer(view.fig, view.moving),
         draw=draw,
-        controls={"which": (which, model.set_which), "factor": (factor, model.set_factor)},
-        layout=[readout, ["which", "factor"]],
+        controls={
+            "which": (which, model.set_which),
+            "factor": (factor, model.set_factor),
+            "new": (button("New run", "refresh", "new tracks, same mistuning"), model.new_run),
+        },
+        layout=[readout, ["which", "factor", "new"]],
         display_width=DISPLAY_WIDTH,
     )
     demo.view = view  # the artists by name, for tests

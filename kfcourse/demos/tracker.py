@@ -8,25 +8,33 @@ import numpy as np
 from ..plots import palette
 from ..plots.style import FigureRenderer
 from ..plots.tracking import tracker_view, update_tracker_view
-from ..sim.target import START_STEPS, TargetRun, filter_target, process_noise, simulate_target
-from ._base import Demo, slider
+from ..sim.target import SENSOR_STD, START_STEPS, TargetRun, filter_target, process_noise, simulate_target
+from ._base import Demo, button, slider
 
-Q_TUNED = 1.0  # m², the filter's assumed sensor variance to start with (the world's is 1 m²)
 ACCEL_TUNED = 10.0  # m²/s⁴, the filter's assumed acceleration variance to start with
 K_JITTERY = 0.9  # position gain above which the filter copies the readings
 K_COASTING = 0.05  # position gain below which the filter coasts on its motion model
 DISPLAY_WIDTH = 848  # CSS px: a laptop's notebook width, where the picture and its controls fit the screen
+CAPTION = (
+    "<b>2-D tracker.</b> Grey: the true path, position and velocity (the line reaches where the target is 1 s "
+    "later). Orange: readings. Teal: the estimate, its trail, velocity and 2σ ellipse; dotted: where it goes "
+    "next. <i>sensor σ</i> and <i>New run</i> change the world (the readings); <i>Q</i> (× the true one) and "
+    "<i>σₐ²</i> (which sets R) change only what the filter <i>assumes</i>."
+)
 
 
 class Tracker:
-    """Model: one turning target (fixed) and the filter's assumed noise (tunable).
+    """Model: one turning target seen by a sensor of tunable noise (the world), and the
+    filter's assumed noise (its belief), tuned apart from the world.
 
     Attributes
     ----------
     run : TargetRun
-        The world; it never changes when the filter is retuned.
-    q_var : float
-        Assumed sensor variance per axis, Q = q_var I (m²).
+        The world: the true path and the readings, with sensor noise ``sensor_std``.
+    sensor_std : float
+        The world's sensor noise per axis (m); the true Q is ``sensor_std**2 * I``.
+    q_factor : float
+        The filter assumes ``q_factor`` times the true Q (1: it is told the truth).
     accel_var : float
         Assumed acceleration variance per axis; R = :func:`process_noise` (m²/s⁴).
     est : TargetEstimates
@@ -36,23 +44,43 @@ class Tracker:
     """
 
     def __init__(self, seed: int):
-        self.run: TargetRun = simulate_target(seed)
-        self.q_var = Q_TUNED
+        self.seed = seed
+        self.sensor_std = SENSOR_STD
+        self.q_factor = 1.0
         self.accel_var = ACCEL_TUNED
         self.frame = 95  # in the middle of the U-turn
+        self._simulate()
+
+    @property
+    def q_var(self) -> float:
+        """The sensor variance per axis the filter assumes, Q = q_var I (m²)."""
+        return self.q_factor * self.sensor_std**2
+
+    def _simulate(self) -> None:
+        self.run: TargetRun = simulate_target(self.seed, self.sensor_std)
         self._refilter()
 
     def _refilter(self) -> None:
         R = process_noise(self.run.dt, self.accel_var)
         self.est = filter_target(self.run, R=R, Q=self.q_var * np.eye(2))
 
-    def set_q_var(self, q_var: float) -> None:
-        self.q_var = float(q_var)
+    def set_sensor_std(self, sensor_std: float) -> None:
+        """Change the world's sensor noise; the filter's Q follows it (times ``q_factor``)."""
+        self.sensor_std = float(sensor_std)
+        self._simulate()
+
+    def set_q_factor(self, q_factor: float) -> None:
+        self.q_factor = float(q_factor)
         self._refilter()
 
     def set_accel_var(self, accel_var: float) -> None:
         self.accel_var = float(accel_var)
         self._refilter()
+
+    def new_run(self) -> None:
+        """The same path and settings, new sensor noise."""
+        self.seed += 1
+        self._simulate()
 
     def gain(self) -> float:
         """The position gain at the frame shown: how far the estimate moves towards a reading."""
@@ -84,24 +112,31 @@ class Tracker:
         return float(est), float(raw)
 
 
-def _readout(model: Tracker) -> str:
-    """The three lines under the picture: both velocities, the mean errors so far, and the gain with its regime."""
-    k, run = model.frame, model.run
+def _readout(model: Tracker, lo, hi) -> str:
+    """The four lines under the picture: the velocities; the errors and the ellipse (said to reach past the
+    map ``lo``-``hi`` where it does); the gain and its regime; the honesty test of the run."""
+    k, run, est = model.frame, model.run, model.est
     v_est, v_true = model.velocities()
     e_est, e_raw = model.errors()
+    radius, p = est.ellipse_radius(k), est.mu[k, :2]
+    past = " (past the edge)" if np.any(p - radius < lo) or np.any(p + radius > hi) else ""
+    h = est.honesty()
     return (
-        f"<div style='font-size:13px;line-height:1.5'>t = {run.t[k]:.1f} s &nbsp; velocity (m/s): "
+        f"<div style='font-size:13px;line-height:1.45'>t = {run.t[k]:.1f} s &nbsp; velocity (m/s): "
         f"<span style='color:{palette.ESTIMATE}'>estimated ({v_est[0]:+.2f}, {v_est[1]:+.2f})</span>, "
-        f"true ({v_true[0]:+.2f}, {v_true[1]:+.2f})<br>"
-        f"mean distance from the truth so far: estimate {e_est:.2f} m, readings {e_raw:.2f} m<br>"
-        f"<b>K = {model.gain():.3f} &nbsp; {model.regime()}</b></div>"
+        f"true ({v_true[0]:+.2f}, {v_true[1]:+.2f}) &nbsp; run {model.seed}<br>"
+        f"estimate {est.position_error()[k]:.2f} m off, 2σ ellipse {radius:.2f} m{past}; "
+        f"mean off so far: estimate {e_est:.2f} m, readings {e_raw:.2f} m<br>"
+        f"<b>K = {model.gain():.3f} &nbsp; {model.regime()}</b><br>"
+        f"<b>{h.verdict}</b>: mean position NEES over the run {h.mean_nees:.3g}, honest from {h.low:.2f} to "
+        f"{h.high:.2f} &nbsp; (filter's Q = {model.q_var:.3g} m², true {model.sensor_std**2:.3g} m²)</div>"
     )
 
 
 def tracker(seed: int = 0) -> Demo:
     """Demo "2-D tracker" (chapter 6): a constant-velocity filter follows a turning
-    target.  Run animates time, the step slider scrubs, and two log sliders retune
-    the filter's assumed Q and R while the target stays the same.
+    target.  Run animates time, the step slider scrubs; the world's sensor noise and
+    New run change the readings, two log sliders retune the filter's assumed Q and R.
 
     Returns
     -------
@@ -114,32 +149,31 @@ def tracker(seed: int = 0) -> Demo:
 
     def draw() -> None:
         update_tracker_view(view, model)
-        readout.value = _readout(model)
+        readout.value = _readout(model, view.lo, view.hi)
 
-    caption = (
-        "<b>2-D tracker.</b> Grey: the true path, position and velocity (the line reaches where the target is "
-        "1 s later). Orange: readings (σ = 1 m). Teal: the estimate, its trail, velocity and 2σ ellipse; dotted: "
-        "where these settings take it next. <i>Q</i> and <i>σₐ²</i> (which sets R) are the noises the filter "
-        "<i>assumes</i>: they retune the filter, not the target."
-    )
     demo = Demo(
         name="tracker",
-        caption=caption,
+        caption=CAPTION,
         model=model,
         renderer=FigureRenderer(view.fig, view.moving),
         draw=draw,
         frames=model.run.t.size,
         controls={
+            "sigma": (
+                slider(widgets.FloatSlider, "sensor σ (m)", SENSOR_STD, 0.1, 5.0, 0.1, ".1f"),
+                model.set_sensor_std,
+            ),
+            "new": (button("New run", "refresh", "new sensor noise, same path"), model.new_run),
             "Q": (
-                slider(widgets.FloatLogSlider, "assumed Q (m²)", Q_TUNED, -3, 4, 0.1, ".3g", base=10),
-                model.set_q_var,
+                slider(widgets.FloatLogSlider, "filter's Q (× true)", 1.0, -3, 4, 0.1, ".3g", base=10),
+                model.set_q_factor,
             ),
             "R": (
-                slider(widgets.FloatLogSlider, "assumed σₐ² (m²/s⁴)", ACCEL_TUNED, -3, 7, 0.1, ".3g", base=10),
+                slider(widgets.FloatLogSlider, "filter's σₐ² (m²/s⁴)", ACCEL_TUNED, -3, 7, 0.1, ".3g", base=10),
                 model.set_accel_var,
             ),
         },
-        layout=[readout, ["play", "frame"], ["Q", "R"]],
+        layout=[readout, ["play", "frame"], ["sigma", "new"], ["Q", "R"]],
         display_width=DISPLAY_WIDTH,
     )
     demo.view = view  # the artists by name, for tests

@@ -107,7 +107,7 @@ class LoopMap:
     ring: Ellipse  #: 2-sigma, after them
     beams: LineCollection  #: teal, to the landmarks whose readings were used
     rejected: LineCollection  #: dashed orange, to those whose readings were rejected
-    note: Text  #: "sensor blind", "kidnapped", or nothing
+    note: Text  #: "sensor blind", "sight back", "kidnapped", or nothing
 
     @property
     def moving(self) -> list:
@@ -217,6 +217,8 @@ def update_loop_map(view: LoopMap, run, k: int) -> None:
     k0 = kidnap_step(run)
     if _blind(run, k):
         view.note.set_text("sensor blind")
+    elif run.dropout is not None and k == run.dropout[1] and getattr(run, "one_back", False):
+        view.note.set_text("sight back: one landmark first")
     elif k0 is not None and k >= k0:
         view.note.set_text("kidnapped: the truth jumped, the filter was not told")
     else:

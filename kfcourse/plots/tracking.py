@@ -13,6 +13,7 @@ from dataclasses import dataclass
 
 import numpy as np
 from matplotlib.collections import PathCollection
+from matplotlib.colors import to_rgb
 from matplotlib.figure import Figure
 from matplotlib.lines import Line2D
 from matplotlib.patches import Ellipse
@@ -44,7 +45,7 @@ class TrackerView:
     truth_dot: Line2D  #: grey, the true position
     velocity: Line2D  #: teal, the same for the estimate, cut at the edge of the map
     dot: Line2D  #: teal, the estimated position
-    ring: Ellipse  #: teal, the estimate's 2-sigma position ellipse
+    ring: Ellipse  #: teal, the estimate's 2-sigma position ellipse, lightly filled
     lo: np.ndarray  #: (2,) lower-left corner of the map (m)
     hi: np.ndarray  #: (2,) upper-right corner of the map (m)
 
@@ -96,7 +97,11 @@ def tracker_view(run, width: float = 8.0, height: float = 4.4) -> TrackerView:
     (ahead,) = ax.plot([], [], ":", color=palette.ESTIMATE, lw=1.2, alpha=0.5, label="estimate ahead")
     (dot,) = ax.plot([], [], "o", color=palette.ESTIMATE, ms=8, zorder=4, label="estimated position")
     (velocity,) = ax.plot([], [], color=palette.ESTIMATE, lw=2.5, zorder=4, label="estimated velocity")
-    ring = covariance_ellipse(ax, run.z[0], np.eye(2), nsig=2.0, label="2σ ellipse", zorder=4)
+    # Lightly filled: an ellipse larger than the map still shows, as a tint over all of it.
+    fill = (*to_rgb(palette.ESTIMATE), 0.1)
+    ring = covariance_ellipse(
+        ax, run.z[0], np.eye(2), nsig=2.0, label="2σ ellipse", zorder=4, fill=True, facecolor=fill
+    )
     ax.legend(loc="upper left", bbox_to_anchor=(1.0, 1.0), fontsize=9, frameon=False)
     return TrackerView(fig, readings, trail, ahead, truth_velocity, truth_dot, velocity, dot, ring, lo, hi)
 
@@ -182,7 +187,7 @@ def nees_view(t, band, dof: int, n_tracks: int, y_range=(0.5, 500.0), width: flo
     ax.set_xlim(t[0], t[-1])
     ax.set_ylim(*y_range)
     ax.set_xlabel("time (s)")
-    ax.set_ylabel(r"average NEES  $\bar\epsilon$")
+    ax.set_ylabel(r"average NEES  $\bar\eta$")
     ax.axhspan(low, high, color=palette.TRUTH, alpha=0.35, lw=0, label=f"95 % band for {n_tracks} honest runs")
     ax.axhline(dof, color=palette.INK, lw=1.0, ls="--", label=f"{dof} = state dimension")
     (curve,) = ax.plot(

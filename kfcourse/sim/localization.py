@@ -31,7 +31,7 @@ from ..models import (
     unicycle_jacobian,
     wrap_angle,
 )
-from .records import Record, read_only
+from .records import Record, read_only, text_table
 from .robot import DEFAULT_LANDMARKS, RobotRun, loop_controls, simulate_robot
 
 FILTERS = ("ekf", "ukf")
@@ -40,6 +40,7 @@ RANGE_STD, BEARING_STD = 0.1, 0.03  # reading noise at sensor_noise = 1: m, rad
 SIG0 = read_only(np.diag([0.01, 0.01, 0.001]))  # the start is known to about 10 cm and 2 degrees
 NOISE_SCALES = (0.01, 100.0)  # below, a reading so exact the gain's S^-1 loses its digits; above, no robot
 UKF_LAM = 0.0  # lambda = 3 - n for the pose (n = 3): centre weight 0, six points of weight 1/6
+HONEST_NEES = (1.0, 4.0)  # the band of the mean position NEES (2 for an honest filter) read as honest
 
 
 @dataclass(frozen=True)
@@ -79,10 +80,14 @@ class LoopRun(Record):
     error: np.ndarray  #: (T,) distance between the estimated and the true position (m)
     inside: np.ndarray  #: (T,) bool: the true position lies inside the 3-sigma position ellipse
     area: np.ndarray  #: (T,) area of the 1-sigma position ellipse, pi sqrt(det Sig_xy) (m^2)
-    filter: str  #: "ekf" or "ukf"
+    nees: np.ndarray  #: (T,) position NEES e^T Sig_xy^-1 e: 2 on average for an honest filter (chapter 6)
+    filter: str  #: "ekf", "ukf", or the name of the step function that ran
     dropout: tuple[int, int] | None  #: the sensor is blind for steps t0 <= k < t1
-    motion_noise: float  #: scale of the odometry noise and of R
-    sensor_noise: float  #: scale of the reading noise and of Q
+    one_back: bool  #: at step t1 the sensor read only the nearest landmark: sight came back one landmark first
+    motion_noise: float  #: scale of the world's odometry noise
+    sensor_noise: float  #: scale of the world's reading noise
+    filter_motion_noise: float  #: scale of the odometry noise the filter assumes (its R)
+    filter_sensor_noise: float  #: scale of the reading noise the filter assumes (its Q)
     kidnap: int | None  #: step at which the true robot was carried half a lap further on
     wrap_bearing: bool  #: whether the bearing innovation was wrapped to (-pi, pi]
     gate: float | None  #: validation gate in standard deviations, or None
@@ -92,6 +97,39 @@ class LoopRun(Record):
     def share_inside(self) -> float:
         """Share of the steps with the truth inside the 3-sigma ellipse (0 to 1)."""
         return float(self.inside.mean())
+
+    def honesty(self, k: int | None = None) -> tuple[float, str]:
+        """The mean position NEES over steps 0 to ``k`` (by default the whole run) and what it says.
+
+        An honest filter's position NEES is 2 on average (chapter 6).  Its mean over a lap
+        stays within :data:`HONEST_NEES`, a band wider than chapter 6's for independent
+        draws because one lap's errors are correlated from step to step.  Below it the
+        filter is *timid* (its ellipse is larger than its errors), above it *over-confident*.
+        """
+        k = len(self.t) - 1 if k is None else int(k)
+        mean = float(self.nees[: k + 1].mean())
+        low, high = HONEST_NEES
+        return mean, "timid" if mean < low else "over-confident" if mean > high else "honest"
+
+    def table(self, steps) -> str:
+        """One line per step of ``steps``: readings used and rejected, error, 1-sigma area before and after."""
+        rows = []
+        for k in steps:
+            bar = np.pi * np.sqrt(np.linalg.det(self.Sig_bar[k, :2, :2]))
+            rows.append(
+                [
+                    str(k),
+                    str(int(self.used[k].sum())),
+                    str(int(self.rejected[k].sum())),
+                    f"{np.linalg.norm(self.truth[k, :2] - self.mu_bar[k, :2]):.2f}",
+                    f"{self.error[k]:.2f}",
+                    f"{bar:.3g}",
+                    f"{self.area[k]:.3g}",
+                    "yes" if self.inside[k] else "no",
+                ]
+            )
+        header = ["step", "used", "rejected", "error before (m)", "after", "1σ area before (m²)", "after", "inside 3σ"]
+        return text_table(header, rows)
 
 
 def _noise_scale(x, name: str) -> float:
@@ -233,13 +271,59 @@ def loop_world(
     )
 
 
+def localize_with_step(world: RobotRun, step: Callable, Sig0, M, Q, gate: float, name: str = "step") -> Track:
+    """The localization loop run by one function: ``step`` does a whole step, prediction and updates.
+
+    ``step(mu, Sig, u, z, landmarks, dt, M, Q, gate) -> (mu, Sig, used)`` gets the readings
+    of the landmarks in view at each step (chapter 10's exercise, the interface of
+    :func:`~kfcourse.ekf_localization_step`).  Its prediction, for the record, is the same
+    function with no reading.  What it returns is checked at every step: a
+    ``ValueError`` names the function, the step and what went wrong.  Introduced in chapter 10.
+    """
+    T, L = world.visible.shape
+    mu, Sig = np.array(world.start), np.array(Sig0, dtype=float)
+    mu_bar, Sig_bar = np.empty((T, 3)), np.empty((T, 3, 3))
+    mus, Sigs, used = np.empty_like(mu_bar), np.empty_like(Sig_bar), np.zeros((T, L), dtype=bool)
+    nothing = np.empty((0, 2))
+    for k in range(T):
+        seen = np.flatnonzero(world.visible[k])
+        u = world.odometry[k]
+        mu_bar[k], Sig_bar[k], _ = _step_output(step, name, k, 0, mu, Sig, u, nothing, nothing, world.dt, M, Q, gate)
+        z, marks = world.z[k, seen], world.landmarks[seen]
+        mu, Sig, used[k, seen] = _step_output(step, name, k, len(seen), mu, Sig, u, z, marks, world.dt, M, Q, gate)
+        mus[k], Sigs[k] = mu, Sig
+    return Track(mu_bar=mu_bar, Sig_bar=Sig_bar, mu=mus, Sig=Sigs, used=used)
+
+
+def _step_output(step, name, k, n_seen, *args):
+    """Call a step function on copies of its inputs; its output checked, or a ValueError saying what went wrong."""
+    where = f"the filter {name} at step {k} ({n_seen} reading{'s' if n_seen != 1 else ''})"
+    try:
+        out = step(*(np.array(a) if isinstance(a, np.ndarray) else a for a in args))
+    except Exception as err:  # the student's code: whatever it raises becomes a message
+        raise ValueError(f"{where} raised {type(err).__name__}: {err}") from None
+    if not isinstance(out, tuple | list) or len(out) != 3:
+        raise ValueError(f"{where} must return (mu, Sig, used), got {type(out).__name__}")
+    try:
+        mu, Sig = v.vector(out[0], "mu", 3), v.covariance(out[1], "Sig", 3)
+    except ValueError as err:
+        raise ValueError(f"{where} returned {err}") from None
+    used = np.asarray(out[2])
+    if used.shape != (n_seen,) or not (used.dtype == bool or np.isin(used, (0, 1)).all()):
+        raise ValueError(f"{where} must return used, one True or False per reading, shape ({n_seen},); got {out[2]!r}")
+    return mu, Sig, used.astype(bool)
+
+
 def landmark_loop(
     seed: int = 0,
     *,
-    filter: str = "ekf",
+    filter="ekf",
     dropout=None,
     motion_noise: float = 1.0,
     sensor_noise: float = 1.0,
+    filter_motion_noise: float | None = None,
+    filter_sensor_noise: float | None = None,
+    one_back: bool = False,
     kidnap: int | None = None,
     wrap_bearing: bool = True,
     gate: float | None = None,
@@ -247,12 +331,13 @@ def landmark_loop(
     landmarks=None,
     sensor_range: float = 4.0,
 ) -> LoopRun:
-    r"""Drive the loop of :func:`loop_controls` through a map and localize with an EKF or a UKF.
+    r"""Drive the loop of :func:`loop_controls` through a map and localize with an EKF, a UKF or your own step.
 
     The world is :func:`~kfcourse.sim.simulate_robot`'s, draw for draw.  The filter
-    (:func:`loop_filter`, run by :func:`localize`) starts at the true start with
-    covariance :data:`SIG0`; its R (the odometry noise mapped into the pose) and Q are
-    the simulation's own: the filter is honest about the noise.
+    starts at the true start with covariance :data:`SIG0`.  Its R (the odometry noise
+    it assumes, mapped into the pose) and its Q are the world's own unless
+    ``filter_motion_noise`` or ``filter_sensor_noise`` say otherwise: by default the
+    filter is honest about the noise.
 
     Introduced in chapter 8; the capstone of chapter 10 drives every argument.
 
@@ -261,25 +346,37 @@ def landmark_loop(
     seed : int
         Seed of the noise (>= 0).  The same seed gives the same noise for every
         filter, dropout and kidnapping.
-    filter : {"ekf", "ukf"}
-        Which filter follows the robot.  The UKF uses λ = 0 and averages headings
-        on the circle.
+    filter : {"ekf", "ukf"} or callable
+        Which filter follows the robot: the course's EKF (:func:`loop_filter` run by
+        :func:`localize`), its UKF (λ = 0, headings averaged on the circle), or a
+        function ``step(mu, Sig, u, z, landmarks, dt, M, Q, gate) -> (mu, Sig, used)``
+        that does a whole step (chapter 10's exercise, run by :func:`localize_with_step`).
+        A step that raises or returns something wrong gives a ``ValueError`` that names
+        it and the step.
     dropout : (int, int), optional
         The sensor is blind for the steps ``t0 <= k < t1``.
     motion_noise, sensor_noise : float
-        Scale of the odometry noise (and of R) and of the reading noise (and of Q),
-        from 0.01 to 100 (:data:`NOISE_SCALES`); 1 is the default robot.
+        Scale of the world's odometry noise (0.1 m/s, 0.05 rad/s at 1) and reading
+        noise (0.1 m, 0.03 rad at 1), from 0.01 to 100 (:data:`NOISE_SCALES`).
+    filter_motion_noise, filter_sensor_noise : float, optional
+        Scale of the odometry noise (its R) and the reading noise (its Q) the filter
+        assumes, on the same scale; ``None`` (the default) is the world's.  A filter
+        that assumes more noise than there is is timid, less is over-confident.
+    one_back : bool
+        Sight comes back one landmark first: at step ``t1`` the sensor reads only the
+        nearest landmark in range (:func:`~kfcourse.sim.simulate_robot`).
     kidnap : int, optional
         At this step the true robot is lifted and set down half a lap further
         round the loop, where it carries on; the filter is not told.
     wrap_bearing : bool
         Wrap the bearing innovation to (-pi, pi].  False is the bug of chapter 8:
-        a reading just across ±pi then looks 2 pi away.
+        a reading just across ±pi then looks 2 pi away.  Only for "ekf" and "ukf".
     gate : float, optional
         Validation gate (> 0, in standard deviations, chapter 8): a reading whose
         Mahalanobis distance from its landmark's predicted reading exceeds it is
         rejected.  Both filters measure the distance with the linearized
-        :math:`S = H\bar\Sigma H^\top + Q`.  ``None`` (the default) uses every reading.
+        :math:`S = H\bar\Sigma H^\top + Q`.  ``None`` (the default) uses every reading
+        (a step function gets ``gate=np.inf``).
     laps : int
         Times round the loop (>= 1).
     landmarks : array_like, shape (L, 2), optional
@@ -291,32 +388,50 @@ def landmark_loop(
     -------
     LoopRun
     """
-    if filter not in FILTERS:
-        raise ValueError(f"filter must be one of {FILTERS}, got {filter!r}")
+    if not callable(filter) and filter not in FILTERS:
+        raise ValueError(f"filter must be one of {FILTERS} or a step function, got {filter!r}")
+    name = getattr(filter, "__name__", "step") if callable(filter) else filter
     motion_noise = _noise_scale(motion_noise, "motion_noise")
     sensor_noise = _noise_scale(sensor_noise, "sensor_noise")
+    trust_motion = (
+        motion_noise if filter_motion_noise is None else _noise_scale(filter_motion_noise, "filter_motion_noise")
+    )
+    trust_sensor = (
+        sensor_noise if filter_sensor_noise is None else _noise_scale(filter_sensor_noise, "filter_sensor_noise")
+    )
     wrap_bearing = v.flag(wrap_bearing, "wrap_bearing")
+    if callable(filter) and not wrap_bearing:
+        raise ValueError(
+            "wrap_bearing=False switches the wrap off in the course's filters only; a step function wraps as written"
+        )
     gate = None if gate is None else v.positive(gate, "gate", "a distance", "standard deviations")
-    drive = {"sensor_range": sensor_range, "laps": laps, "kidnap": kidnap, "dropout": dropout}
+    drive = {"sensor_range": sensor_range, "laps": laps, "kidnap": kidnap, "dropout": dropout, "one_back": one_back}
     world = loop_world(seed, motion_noise, sensor_noise, landmarks, **drive)
     dt = world.dt
-    M = np.diag([world.v_std, world.omega_std]) ** 2  # odometry noise covariance
-    Q = np.diag([world.range_std, world.bearing_std]) ** 2  # measurement noise covariance
-    predict, update = loop_filter(filter, dt, M, Q, wrap_bearing)
-    accept = None if gate is None else gate_within(gate, Q, wrap_bearing)
-    try:
-        track = localize(world, predict, update, SIG0, accept)
-    except ValueError as err:  # a covariance no longer positive semi-definite, at extreme noise
-        raise ValueError(f"the {filter.upper()} broke down with {motion_noise=} and {sensor_noise=}: {err}") from None
-    settings = {"filter": filter, "wrap_bearing": wrap_bearing, "gate": gate, "noise": (motion_noise, sensor_noise)}
-    return _loop_run(world, track, **settings)
+    M = np.diag([trust_motion * V_STD, trust_motion * OMEGA_STD]) ** 2  # the odometry noise the filter assumes
+    Q = np.diag([trust_sensor * RANGE_STD, trust_sensor * BEARING_STD]) ** 2  # the reading noise it assumes
+    if callable(filter):
+        track = localize_with_step(world, filter, SIG0, M, Q, np.inf if gate is None else gate, name)
+    else:
+        predict, update = loop_filter(filter, dt, M, Q, wrap_bearing)
+        accept = None if gate is None else gate_within(gate, Q, wrap_bearing)
+        try:
+            track = localize(world, predict, update, SIG0, accept)
+        except ValueError as err:  # a covariance no longer positive semi-definite, at extreme noise
+            raise ValueError(
+                f"the {filter.upper()} broke down with {motion_noise=} and {sensor_noise=}: {err}"
+            ) from None
+    noise = (motion_noise, sensor_noise, trust_motion, trust_sensor)
+    return _loop_run(world, track, filter=name, wrap_bearing=wrap_bearing, gate=gate, noise=noise)
 
 
 def _loop_run(world: RobotRun, track: Track, *, filter, wrap_bearing, gate, noise) -> LoopRun:
-    """The record of one lap: the world, the filter's track, and the truth measured against it."""
+    """The record of one lap: the world, the filter's track, and the truth measured against it.
+
+    ``noise`` is (world's motion, world's sensor, filter's motion, filter's sensor) noise scales."""
     err = world.truth[:, :2] - track.mu[:, :2]
     Sxy = track.Sig[:, :2, :2]
-    d2 = np.einsum("ti,tij,tj->t", err, np.linalg.inv(Sxy), err)  # e^T Sig_xy^-1 e
+    d2 = np.einsum("ti,tij,tj->t", err, np.linalg.pinv(Sxy), err)  # e^T Sig_xy^-1 e
     return LoopRun(
         t=world.t,
         dt=world.dt,
@@ -335,10 +450,14 @@ def _loop_run(world: RobotRun, track: Track, *, filter, wrap_bearing, gate, nois
         error=np.linalg.norm(err, axis=1),
         inside=d2 <= 9.0,
         area=np.pi * np.sqrt(np.linalg.det(Sxy)),
+        nees=d2,
         filter=filter,
         dropout=world.dropout,
+        one_back=world.one_back,
         motion_noise=noise[0],
         sensor_noise=noise[1],
+        filter_motion_noise=noise[2],
+        filter_sensor_noise=noise[3],
         kidnap=world.kidnap,
         wrap_bearing=wrap_bearing,
         gate=gate,

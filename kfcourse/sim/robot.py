@@ -61,6 +61,7 @@ class RobotRun(Record):
     seed: int
     kidnap: int | None = None  #: step at which the robot was carried half its controls further on
     dropout: tuple[int, int] | None = None  #: the sensor is blind for steps t0 <= k < t1
+    one_back: bool = False  #: at step t1, the first after the dropout, the sensor read only the nearest landmark
 
 
 def loop_controls(
@@ -214,6 +215,7 @@ def simulate_robot(
     laps: int = 1,
     kidnap: int | None = None,
     dropout=None,
+    one_back: bool = False,
 ) -> RobotRun:
     r"""Drive a unicycle robot under controls ``u``; record noisy odometry and landmark readings.
 
@@ -256,6 +258,10 @@ def simulate_robot(
         lap of a loop), where it drives on (:func:`true_path`); the filter is not told.
     dropout : (int, int), optional
         The sensor is blind for the steps ``t0 <= k < t1``: no readings there.
+    one_back : bool
+        Sight comes back one landmark first: at step ``t1``, the first after the
+        dropout, the sensor reads only the nearest landmark in range (chapter 10's
+        "a single good reading").  The draws are the same either way.
 
     Returns
     -------
@@ -277,9 +283,10 @@ def simulate_robot(
     if kidnap is not None and not v.whole(kidnap, "kidnap") < laps * len(u):
         raise ValueError(f"kidnap must be a step below {laps * len(u)}, got {kidnap}")
     dropout = _dropout(dropout)
+    one_back = v.flag(one_back, "one_back")
 
     stds = {"v_std": v_std, "omega_std": omega_std, "range_std": range_std, "bearing_std": bearing_std}
-    return _drive(u, dt, start, m, sensor_range, stds, seed, laps, kidnap, dropout)
+    return _drive(u, dt, start, m, sensor_range, stds, seed, laps, kidnap, dropout, one_back)
 
 
 def _landmark_map(landmarks) -> np.ndarray:
@@ -291,7 +298,7 @@ def _landmark_map(landmarks) -> np.ndarray:
     return v.matrix(landmarks, "landmarks", cols=2)
 
 
-def _drive(u, dt, start, m, sensor_range, stds, seed, laps, kidnap, dropout) -> RobotRun:
+def _drive(u, dt, start, m, sensor_range, stds, seed, laps, kidnap, dropout, one_back) -> RobotRun:
     """:func:`simulate_robot` once its arguments are checked: the draws, the truth and the readings."""
     n_steps, n_marks = laps * len(u), len(m)
     rng = np.random.default_rng(seed)
@@ -303,6 +310,10 @@ def _drive(u, dt, start, m, sensor_range, stds, seed, laps, kidnap, dropout) -> 
     z, visible = readings(truth, m, sensor_range, stds["range_std"], stds["bearing_std"], eps)
     if dropout is not None:
         visible[dropout[0] : dropout[1]] = False  # the sensor is blind
+        k = dropout[1]  # the first step with sight back
+        if one_back and k < n_steps and visible[k].any():
+            dist = np.where(visible[k], np.linalg.norm(m - truth[k, :2], axis=1), np.inf)
+            visible[k] = np.arange(n_marks) == np.argmin(dist)  # only the nearest landmark in range
 
     return RobotRun(
         t=dt * np.arange(1, n_steps + 1),
@@ -319,4 +330,5 @@ def _drive(u, dt, start, m, sensor_range, stds, seed, laps, kidnap, dropout) -> 
         seed=seed,
         kidnap=kidnap,
         dropout=dropout,
+        one_back=one_back,
     )

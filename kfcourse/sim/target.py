@@ -9,7 +9,10 @@ exactly (with random accelerations), the world in which a well-tuned filter is
 
 The filter's assumed noise (``R``, ``Q`` passed to :func:`filter_target` and
 :func:`filter_tracks`) is separate from the world's true noise: retuning the
-filter never changes the target.
+filter never changes the target.  The run records measure themselves: a
+:class:`TargetEstimates` gives its lag, roughness, ellipse and honesty (the
+position NEES of one run against its chi-square band), and :meth:`TargetRun.tuning_table`
+and :meth:`TrackBatch.nees_table` print the tables of chapter 6.
 """
 
 from __future__ import annotations
@@ -24,7 +27,7 @@ from .. import _validate as v
 from ..filters.batch import kf_step_batch
 from ..filters.kalman import kf_step
 from ..models import constant_velocity
-from .records import Record, read_only
+from .records import Record, read_only, text_table
 
 DT = 0.1  # s between readings
 SPEED = 2.0  # m/s, the target's constant speed
@@ -33,6 +36,7 @@ START_SPEED_STD = 2.0  # m/s, the spread of the NEES targets' starting velocitie
 START_STEPS = 20  # readings (2 s) through which filter_target fits its starting line
 START_STD = 1.0  # m, the sensor's rated noise, used for the starting line whatever Q the filter assumes
 START_SPEED_VAR = 1e4  # (m/s)², "no idea of the velocity" before the second reading
+FADE_TIME = 1.0  # s: how long a tracking filter's error takes to fade; the honesty test's draws are this far apart
 
 # The turning target's path: (duration in s, turn rate in rad/s) per leg.
 LEGS = (
@@ -58,6 +62,31 @@ class TargetRun(Record):
     sensor_std: float  #: the world's true sensor noise per axis (m)
     seed: int
 
+    def tuning_table(self, estimates: dict) -> str:
+        """A table of filters run over this target (label -> :class:`TargetEstimates`) and of the readings
+        themselves: the final position gain, the lag in the turns, the roughness, and the honesty test."""
+        rows = []
+        for label, est in estimates.items():
+            h = est.honesty()
+            rows.append(
+                [label, f"{est.K[-1, 0, 0]:.3f}", f"{est.lag_in_turns():.2f}", f"{est.roughness():.2f}",
+                 f"{h.mean_nees:.2f}", h.verdict]
+            )  # fmt: skip
+        lag_z = np.linalg.norm(self.z - self.truth[:, :2], axis=1)[self.turning].mean()
+        rows.append(["the readings", "", f"{lag_z:.2f}", f"{roughness(self.z):.2f}", "", ""])
+        return text_table(["filter assumes", "K", "lag in turns (m)", "roughness (m)", "mean NEES", "verdict"], rows)
+
+
+@dataclass(frozen=True)
+class Honesty:
+    """The tracker's honesty test (chapter 6): the position NEES averaged over one run, against its band."""
+
+    mean_nees: float  #: the position NEES averaged over the tracking steps
+    low: float  #: where an honest filter's mean_nees lies (95 % of the time, or the level asked for): from ...
+    high: float  #: ... to
+    draws: int  #: the independent draws the band counts (one per FADE_TIME of tracking)
+    verdict: str  #: "honest", "timid" (below the band) or "over-confident" (above it)
+
 
 @dataclass(frozen=True)
 class TargetEstimates(Record):
@@ -68,14 +97,56 @@ class TargetEstimates(Record):
     K: np.ndarray  #: (T, 4, 2) Kalman gain used at step k (zero at k = 0; the start-up gain up to START_STEPS - 1)
     R: np.ndarray  #: (4, 4) the process noise the filter assumed
     Q: np.ndarray  #: (2, 2) the measurement noise the filter assumed
+    run: TargetRun  #: the world the filter tracked
+
+    def position_error(self) -> np.ndarray:
+        """(T,) distance (m) of the estimated position from the true one."""
+        return np.linalg.norm(self.mu[:, :2] - self.run.truth[:, :2], axis=1)
+
+    def lag_in_turns(self) -> float:
+        """Mean distance (m) of the estimate from the truth over the steps where the target turns."""
+        return float(self.position_error()[self.run.turning].mean())
+
+    def roughness(self) -> float:
+        r"""Mean :math:`\lVert \mu_{k+1} - 2\mu_k + \mu_{k-1} \rVert` of the position once tracking (m):
+        how much the estimate changes direction from one step to the next."""
+        return roughness(self.mu[:, :2])
+
+    def ellipse_radius(self, k: int, nsig: float = 2.0) -> float:
+        """Half the long axis (m) of the ``nsig``-sigma position ellipse at step ``k``."""
+        return float(nsig * np.sqrt(np.linalg.eigvalsh(self.Sig[k, :2, :2])[-1]))
+
+    def honesty(self, level: float = 0.95) -> Honesty:
+        r"""Is the position ellipse honest?  Chapter 6's NEES test on one run.
+
+        :math:`\eta_k = (p_k - \mu_{p,k})^\top \Sigma_{pp,k}^{-1} (p_k - \mu_{p,k})`, the NEES of the
+        position (the ellipse drawn), is :math:`\chi^2(2)` at each step if the filter is honest.
+        Its average :math:`\bar\eta` over the tracking steps is compared with the band of
+        :func:`nees_band`.  The steps of one run are not independent draws: an error takes about
+        ``FADE_TIME`` to fade, so the band counts one draw per ``FADE_TIME`` of tracking.
+        """
+        eta = nees(self.run.truth[START_STEPS:, :2], self.mu[START_STEPS:, :2], self.Sig[START_STEPS:, :2, :2])
+        draws = max(round(eta.size * self.run.dt / FADE_TIME), 1)
+        low, high = nees_band(draws, 2, level)
+        mean_nees = float(eta.mean())
+        verdict = "timid" if mean_nees < low else "over-confident" if mean_nees > high else "honest"
+        return Honesty(mean_nees, low, high, draws, verdict)
+
+
+def roughness(xy) -> float:
+    r"""Mean :math:`\lVert p_{k+1} - 2p_k + p_{k-1} \rVert` (m) of a path ``xy`` (T, 2) once tracking
+    (from step ``START_STEPS``): how much it changes direction from one step to the next."""
+    xy = np.asarray(xy, float)[START_STEPS:]
+    return float(np.linalg.norm(np.diff(xy, 2, axis=0), axis=1).mean())
 
 
 def process_noise(dt: float, accel_var: float) -> np.ndarray:
     r"""Process noise ``R`` of a constant-velocity model driven by random accelerations.
 
     A constant acceleration :math:`a \sim N(0, \sigma_a^2 I)` held for one step moves
-    the state by :math:`G a` with :math:`G = [\tfrac{\Delta t^2}{2} I;\ \Delta t\, I]`,
-    so :math:`R = \sigma_a^2\, G G^\top`.  Introduced in chapter 6.
+    the state by :math:`\Gamma a` with :math:`\Gamma = [\tfrac{\Delta t^2}{2} I;\ \Delta t\, I]`
+    (the noise input matrix, "Gamma"), so :math:`R = \sigma_a^2\, \Gamma \Gamma^\top`.
+    Introduced in chapter 6.
 
     Parameters
     ----------
@@ -90,8 +161,8 @@ def process_noise(dt: float, accel_var: float) -> np.ndarray:
     """
     dt = v.positive(dt, "dt", "a time step", "s")
     accel_var = v.variance(accel_var, "accel_var")
-    G = np.vstack([0.5 * dt**2 * np.eye(2), dt * np.eye(2)])  # how an acceleration moves [p, v]
-    return accel_var * G @ G.T  # R = sigma_a^2 G G^T
+    Gamma = np.vstack([0.5 * dt**2 * np.eye(2), dt * np.eye(2)])  # how an acceleration moves [p, v]
+    return accel_var * Gamma @ Gamma.T  # R = sigma_a^2 Gamma Gamma^T
 
 
 def simulate_target(seed: int = 0, sensor_std: float = SENSOR_STD) -> TargetRun:
@@ -171,7 +242,7 @@ def filter_target(run: TargetRun, R, Q) -> TargetEstimates:
     Sig_bar = F @ Sig_all[:-1] @ F.T + R_used[1:]  # Sig_bar = F Sig F^T + R
     S = H @ Sig_bar @ H.T + Q_used[1:]  # innovation covariance S = H Sig_bar H^T + Q
     K_all[1:] = Sig_bar @ H.T @ np.linalg.inv(S)  # K = Sig_bar H^T S^-1
-    return TargetEstimates(mu_all, Sig_all, K_all, R, Q)
+    return TargetEstimates(mu_all, Sig_all, K_all, R, Q, run)
 
 
 # --------------------------------------------------------------- many tracks at once: the NEES
@@ -196,6 +267,23 @@ class TrackBatch(Record):
         """The world's true measurement noise, (2, 2)."""
         return self.sensor_std**2 * np.eye(2)
 
+    def nees_table(self, assumed: dict, level: float = 0.95) -> str:
+        """A table of filters run over these tracks (label -> the ``(R, Q)`` they assume): the NEES averaged over
+        the tracks and the steps, the share of steps whose average lies below, inside and above the ``level`` band
+        of :func:`nees_band`, and the mean distance of the position estimates from the truth (m)."""
+        n_tracks = self.truth.shape[0]
+        low, high = nees_band(n_tracks, 4, level)
+        rows = []
+        for label, (R, Q) in assumed.items():
+            mu, Sig = filter_tracks(self, R, Q)
+            eta_bar = nees(self.truth, mu, Sig).mean(axis=0)  # average over the tracks, at each step
+            error = np.linalg.norm(mu[:, :, :2] - self.truth[:, :, :2], axis=2).mean()
+            below, above = np.mean(eta_bar < low), np.mean(eta_bar > high)
+            shares = [f"{share:.0%}" for share in (below, 1.0 - below - above, above)]
+            rows.append([label, f"{eta_bar.mean():.2f}", *shares, f"{error:.2f}"])
+        header = ["filter assumes", "mean NEES", "below", "inside", "above", "error (m)"]
+        return f"band [{low:.2f}, {high:.2f}] for {n_tracks} tracks\n" + text_table(header, rows)
+
 
 def simulate_tracks(
     n_tracks: int = 300,
@@ -208,7 +296,7 @@ def simulate_tracks(
     r"""``n_tracks`` targets that follow the constant-velocity model exactly.
 
     Each starts at the origin with a velocity drawn from :math:`N(0, 2^2 I)` m/s
-    (``START_SPEED_STD``), then :math:`x_k = F x_{k-1} + G a_k` with random
+    (``START_SPEED_STD``), then :math:`x_k = F x_{k-1} + \Gamma a_k` with random
     accelerations :math:`a_k \sim N(0, \sigma_a^2 I)` (so the true process noise is
     :func:`process_noise`), and reads :math:`z_k = p_k + \sigma\, e_k`.
     Introduced in chapter 6.
@@ -223,14 +311,14 @@ def simulate_tracks(
     dt = v.positive(dt, "dt", "a time step", "s")
     rng = np.random.default_rng(seed)
     F, _ = constant_velocity(dt, dim=2)
-    G = np.vstack([0.5 * dt**2 * np.eye(2), dt * np.eye(2)])
+    Gamma = np.vstack([0.5 * dt**2 * np.eye(2), dt * np.eye(2)])  # how an acceleration moves [p, v]
     x = np.zeros((n_tracks, 4))
     x[:, 2:] = START_SPEED_STD * rng.standard_normal((n_tracks, 2))
     truth = np.empty((n_tracks, n_steps, 4))
     truth[:, 0] = x
     for k in range(1, n_steps):
         a = accel_std * rng.standard_normal((n_tracks, 2))
-        truth[:, k] = truth[:, k - 1] @ F.T + a @ G.T  # x_k = F x_{k-1} + G a_k
+        truth[:, k] = truth[:, k - 1] @ F.T + a @ Gamma.T  # x_k = F x_{k-1} + Gamma a_k
     z = truth[:, :, :2] + sensor_std * rng.standard_normal((n_tracks, n_steps, 2))
     return TrackBatch(truth, z, dt, accel_std, sensor_std, seed)
 
@@ -265,10 +353,10 @@ def filter_tracks(batch: TrackBatch, R, Q) -> tuple[np.ndarray, np.ndarray]:
 
 
 def nees(truth, mu, Sig) -> np.ndarray:
-    r"""Normalised estimation error squared, :math:`\varepsilon = (x - \mu)^\top \Sigma^{-1} (x - \mu)`.
+    r"""Normalised estimation error squared, :math:`\eta = (x - \mu)^\top \Sigma^{-1} (x - \mu)`.
 
     If the filter's :math:`\Sigma` is honest (its errors really are
-    :math:`N(0, \Sigma)`), :math:`\varepsilon` follows a chi-square distribution with
+    :math:`N(0, \Sigma)`), :math:`\eta` follows a chi-square distribution with
     n degrees of freedom: on average it equals n.  Introduced in chapter 6.
 
     Parameters
@@ -295,9 +383,9 @@ def nees_band(n_runs: int, dof: int, level: float = 0.95) -> tuple[float, float]
     quantiles follow from the Wilson-Hilferty approximation (a cube root of a
     chi-square is nearly normal):
 
-    .. math:: \chi^2_p(\nu) \approx \nu \left(1 - \frac{2}{9\nu} + z_p\sqrt{\frac{2}{9\nu}}\right)^3
+    .. math:: \chi^2_p(\nu) \approx \nu \left(1 - \frac{2}{9\nu} + \Phi^{-1}(p)\sqrt{\frac{2}{9\nu}}\right)^3
 
-    with :math:`z_p` the standard-normal quantile.  Dividing by ``n_runs`` gives the
+    with :math:`\Phi^{-1}(p)` the standard-normal quantile.  Dividing by ``n_runs`` gives the
     band for the average.  Introduced in chapter 6.
 
     Returns
@@ -310,7 +398,7 @@ def nees_band(n_runs: int, dof: int, level: float = 0.95) -> tuple[float, float]
         raise ValueError(f"level must lie between 0 and 1, got {level}")
     nu = n_runs * dof
     c = 2.0 / (9.0 * nu)
-    z = NormalDist().inv_cdf(0.5 + level / 2)  # 1.96 for 95 %
-    low = nu * max(1 - c - z * math.sqrt(c), 0.0) ** 3  # chi2 quantile at (1 - level) / 2 (never below 0)
-    high = nu * (1 - c + z * math.sqrt(c)) ** 3  # chi2 quantile at (1 + level) / 2
+    n_sd = NormalDist().inv_cdf(0.5 + level / 2)  # 1.96 for 95 %
+    low = nu * max(1 - c - n_sd * math.sqrt(c), 0.0) ** 3  # chi2 quantile at (1 - level) / 2 (never below 0)
+    high = nu * (1 - c + n_sd * math.sqrt(c)) ** 3  # chi2 quantile at (1 + level) / 2
     return low / n_runs, high / n_runs

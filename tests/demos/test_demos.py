@@ -20,7 +20,15 @@ from kfcourse.demos.hallway import DOORS
 DEMOS = kf.demos.__all__  # every demo the course ships gets the generic checks
 # The demos with buttons, named here so that collecting the tests builds no demo;
 # test_first_frame_is_drawn_and_repeatable checks the list against every demo.
-BUTTON_DEMOS = ["data_association", "hallway", "landmark_loop", "raw_vs_filtered", "step_through"]
+BUTTON_DEMOS = [
+    "data_association",
+    "hallway",
+    "landmark_loop",
+    "nees_panel",
+    "raw_vs_filtered",
+    "step_through",
+    "tracker",
+]
 
 
 def make(name, seed=0):

@@ -6,9 +6,11 @@ from types import SimpleNamespace
 
 import numpy as np
 import pytest
+from matplotlib.colors import to_hex
 
 import kfcourse as kf
 from kfcourse.filters.gaussian import ellipse_axes
+from kfcourse.plots import palette
 from kfcourse.plots.style import FigureRenderer
 from kfcourse.plots.tracking import (
     ARROW_TIME,
@@ -89,3 +91,17 @@ def test_nees_panel_refuses_bad_input_by_name(kwargs, name):
     args = {"t": 0.1 * np.arange(60), "band": (3.6, 4.4), "dof": 4, "n_tracks": 200} | kwargs
     with pytest.raises(ValueError, match=name):
         nees_view(**args)
+
+
+def test_tracker_ellipse_is_lightly_filled_so_a_huge_one_still_shows(tracked):
+    """An ellipse larger than the map has no edge in the picture; its light teal fill tints the map instead."""
+    view = tracker_view(tracked[0])
+    assert view.ring.get_fill()
+    face, edge = view.ring.get_facecolor(), view.ring.get_edgecolor()
+    assert to_hex(face[:3]) == to_hex(edge[:3]) == palette.ESTIMATE
+    assert 0.0 < face[3] <= 0.15 and edge[3] == 1.0
+
+
+def test_nees_panel_labels_the_average_nees_eta():
+    view = nees_view(0.1 * np.arange(60), (3.6, 4.4), dof=4, n_tracks=200)
+    assert view.fig.axes[0].get_ylabel() == r"average NEES  $\bar\eta$"

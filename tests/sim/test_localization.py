@@ -59,7 +59,7 @@ def test_dropout_blinds_exactly_its_window():
     np.testing.assert_array_equal(run.mu[:40], free.mu[:40])  # before the window nothing differs
 
 
-def test_noise_scales_the_world_and_the_filter_together():
+def test_noise_scales_the_world_and_by_default_the_filter():
     base, loud = kf.sim.landmark_loop(0), kf.sim.landmark_loop(0, motion_noise=2.0, sensor_noise=3.0)
     loop = kf.sim.loop_controls(dt=base.dt)
     np.testing.assert_allclose(loud.odometry - loop, 2.0 * (base.odometry - loop), atol=1e-12)  # the same draws
@@ -132,6 +132,9 @@ def test_process_noise_of_odometry_maps_the_control_noise():
         ({"kidnap": 1.5}, "kidnap"),
         ({"wrap_bearing": "yes"}, "wrap_bearing"),
         ({"gate": 0.0}, "gate"),
+        ({"filter_motion_noise": 0.0}, "filter_motion_noise"),
+        ({"filter_sensor_noise": 1000.0}, "filter_sensor_noise"),
+        ({"one_back": "yes"}, "one_back"),
         ({"laps": 0}, "laps"),
         ({"sensor_range": -1.0}, "sensor_range"),
         ({"landmarks": [[1.0, 2.0, 3.0]]}, "landmarks"),
@@ -140,3 +143,131 @@ def test_process_noise_of_odometry_maps_the_control_noise():
 def test_bad_input_names_the_argument(kwargs, name):
     with pytest.raises(ValueError, match=f"^{re.escape(name)} must"):
         kf.sim.landmark_loop(0, **kwargs)
+
+
+# --------------------------------------------------------------- chapter 10: the world apart from the filter
+def test_the_filter_is_honest_by_default_and_can_be_told_otherwise():
+    honest = kf.sim.landmark_loop(0, motion_noise=2.0, sensor_noise=3.0)
+    told = kf.sim.landmark_loop(0, motion_noise=2.0, sensor_noise=3.0, filter_motion_noise=2.0, filter_sensor_noise=3.0)
+    np.testing.assert_array_equal(honest.mu, told.mu)  # None is the world's own noise
+    assert (honest.filter_motion_noise, honest.filter_sensor_noise) == (2.0, 3.0)
+    sure = kf.sim.landmark_loop(0, motion_noise=2.0, sensor_noise=3.0, filter_sensor_noise=0.3)
+    for name in ("truth", "odometry", "z"):
+        np.testing.assert_array_equal(getattr(sure, name), getattr(honest, name))  # the same world
+    assert not np.array_equal(sure.mu, honest.mu)
+    assert (sure.sensor_noise, sure.filter_sensor_noise) == (3.0, 0.3)
+
+
+def test_honesty_reads_the_mean_nees():
+    run = kf.sim.landmark_loop(0, gate=4.0)
+    e = run.truth[:, :2] - run.mu[:, :2]
+    np.testing.assert_allclose(run.nees, kf.sim.nees(run.truth[:, :2], run.mu[:, :2], run.Sig[:, :2, :2]), rtol=1e-9)
+    assert run.honesty() == (pytest.approx(run.nees.mean()), "honest")
+    assert run.honesty(9)[0] == pytest.approx(run.nees[:10].mean())
+    assert np.array_equal(run.inside, run.nees <= 9.0) and e.shape == (run.t.size, 2)
+    assert kf.sim.landmark_loop(0, gate=4.0, filter_sensor_noise=0.1).honesty()[1] == "over-confident"
+    assert kf.sim.landmark_loop(0, gate=4.0, filter_sensor_noise=10.0).honesty()[1] == "timid"
+
+
+def test_the_table_prints_the_steps():
+    run = kf.sim.landmark_loop(0, dropout=(40, 70), gate=4.0)
+    lines = run.table([39, 70]).splitlines()
+    assert lines[0].split()[:3] == ["step", "used", "rejected"] and len(lines) == 4
+    assert lines[3].split()[:3] == ["70", "3", "0"] and lines[3].split()[-1] == "yes"
+
+
+def test_sight_comes_back_one_landmark_first():
+    every = kf.sim.landmark_loop(0, dropout=(40, 70))
+    one = kf.sim.landmark_loop(0, dropout=(40, 70), one_back=True)
+    assert every.used[70].sum() == 3 and one.used[70].sum() == 1 and one.one_back and not every.one_back
+    seen = np.flatnonzero(every.used[70])
+    nearest = seen[np.argmin(np.linalg.norm(one.landmarks[seen] - one.truth[70, :2], axis=1))]
+    assert np.flatnonzero(one.used[70]).tolist() == [nearest]
+    np.testing.assert_array_equal(one.used[71:], every.used[71:])  # only step 70 differs
+    np.testing.assert_array_equal(one.z, every.z)  # and the draws are the same
+
+
+# --------------------------------------------------------------------------- chapter 10: your own step
+def chapter_step(mu, Sig, u, z, landmarks, dt, M, Q, gate):
+    """Chapter 10's step, as a student writes it: predict, then gate and update reading by reading."""
+    W = kf.unicycle_control_jacobian(mu, u, dt)
+    g, G = (lambda x, c: kf.unicycle(x, c, dt)), (lambda x, c: kf.unicycle_jacobian(x, c, dt))
+    mu, Sig = kf.ekf_predict(mu, Sig, u, g, G, W @ M @ W.T)
+    used = np.zeros(len(z), dtype=bool)
+    for j, (zj, m) in enumerate(zip(z, landmarks, strict=True)):
+        H = kf.range_bearing_jacobian(mu, m)
+        nu = kf.models.range_bearing_residual(zj, kf.range_bearing(mu, m))
+        if nu @ np.linalg.solve(H @ Sig @ H.T + Q, nu) <= gate**2:
+            h, Hf = (lambda x, m=m: kf.range_bearing(x, m)), (lambda x, m=m: kf.range_bearing_jacobian(x, m))
+            mu, Sig = kf.ekf_update(mu, Sig, zj, h, Hf, Q, kf.models.range_bearing_residual)
+            mu[2] = kf.wrap_angle(mu[2])
+            used[j] = True
+    return mu, Sig, used
+
+
+@pytest.mark.parametrize("gate", [None, 4.0])
+def test_a_step_function_runs_the_loop_as_the_ekf_does(gate):
+    settings = {"gate": gate, "dropout": (40, 70), "motion_noise": 3.0, "filter_sensor_noise": 2.0, "kidnap": 90}
+    ekf = kf.sim.landmark_loop(1, **settings)
+    mine = kf.sim.landmark_loop(1, filter=chapter_step, **settings)
+    assert mine.filter == "chapter_step"
+    for name in ("mu_bar", "Sig_bar", "mu", "Sig"):
+        np.testing.assert_allclose(getattr(mine, name), getattr(ekf, name), atol=1e-9, err_msg=name)
+    np.testing.assert_array_equal(mine.used, ekf.used)
+    np.testing.assert_array_equal(mine.rejected, ekf.rejected)
+
+
+def test_a_step_function_gets_copies_and_the_infinite_gate():
+    seen = []
+
+    def spy(mu, Sig, u, z, landmarks, dt, M, Q, gate):
+        seen.append((gate, z.shape, landmarks.shape, M.shape, Q.shape, dt))
+        out = chapter_step(mu, Sig, u, z, landmarks, dt, M, Q, gate)
+        mu[:] = np.nan  # scribbling on its inputs changes nothing
+        return out
+
+    run = kf.sim.landmark_loop(0, filter=spy, laps=1)
+    assert np.isfinite(run.mu).all() and {s[0] for s in seen} == {np.inf}
+    assert seen[0][1:3] == ((0, 2), (0, 2)) and seen[1][1] == (seen[1][2][0], 2)  # the prediction, then the step
+    assert seen[0][3:] == ((2, 2), (2, 2), 0.2)
+
+
+def broken(kind):
+    def step(mu, Sig, u, z, landmarks, dt, M, Q, gate):
+        if kind == "raise":
+            raise ZeroDivisionError("oops")
+        mu, Sig, used = chapter_step(mu, Sig, u, z, landmarks, dt, M, Q, gate)
+        return {
+            "nan": (mu + np.nan, Sig, used),
+            "shape": (mu, Sig[:2, :2], used),
+            "psd": (mu, -Sig, used),
+            "asym": (mu, Sig + np.triu(np.ones((3, 3)), 1), used),
+            "used": (mu, Sig, used[:0] if len(z) else np.ones(3)),
+            "one": mu,
+        }[kind]
+
+    step.__name__ = f"my_{kind}"
+    return step
+
+
+@pytest.mark.parametrize(
+    ("kind", "said"),
+    [
+        ("raise", "raised ZeroDivisionError: oops"),
+        ("nan", "returned mu must be finite"),
+        ("shape", "returned Sig must"),
+        ("psd", "returned Sig must be positive semi-definite"),
+        ("asym", "returned Sig must be a symmetric"),
+        ("used", "must return used, one True or False per reading"),
+        ("one", "must return (mu, Sig, used)"),
+    ],
+)
+def test_a_broken_step_function_gets_a_value_error_naming_it_and_the_step(kind, said):
+    with pytest.raises(ValueError, match=rf"^the filter my_{kind} at step 0 \(\d readings?\) .*") as err:
+        kf.sim.landmark_loop(0, filter=broken(kind))
+    assert said in str(err.value)
+
+
+def test_a_step_function_wraps_as_written():
+    with pytest.raises(ValueError, match=r"^wrap_bearing=False"):
+        kf.sim.landmark_loop(0, filter=chapter_step, wrap_bearing=False)

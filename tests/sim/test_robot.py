@@ -217,3 +217,17 @@ def test_loop_controls_laps_repeat_the_lap():
     one, three = loop_controls(), loop_controls(laps=3)
     assert np.array_equal(three, np.tile(one, (3, 1)))
     assert np.sum(one[:, 1]) * 0.2 == pytest.approx(2 * math.pi)  # one full turn per lap
+
+
+def test_sight_comes_back_one_landmark_first_the_nearest():
+    every = simulate_robot(seed=3, dropout=(40, 70))
+    one = simulate_robot(seed=3, dropout=(40, 70), one_back=True)
+    assert one.one_back and not every.one_back
+    assert not one.visible[40:70].any() and one.visible[70].sum() == 1 < every.visible[70].sum()
+    d = np.where(every.visible[70], np.linalg.norm(one.landmarks - one.truth[70, :2], axis=1), np.inf)
+    assert one.visible[70, np.argmin(d)]
+    np.testing.assert_array_equal(np.delete(one.visible, 70, axis=0), np.delete(every.visible, 70, axis=0))
+    np.testing.assert_array_equal(one.z, every.z)  # the same draws
+    assert simulate_robot(seed=3, one_back=True).visible.sum() == simulate_robot(seed=3).visible.sum()
+    end = simulate_robot(seed=3, dropout=(40, 10_000), one_back=True)  # blind to the end: nothing comes back
+    assert not end.visible[40:].any()

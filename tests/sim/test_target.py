@@ -24,6 +24,7 @@ from kfcourse.sim.target import (
     nees,
     nees_band,
     process_noise,
+    roughness,
     simulate_target,
     simulate_tracks,
 )
@@ -104,8 +105,8 @@ def test_start_up_fits_the_least_squares_line():
 
 def test_process_noise_is_a_random_acceleration():
     dt, var = 0.5, 2.0
-    G = np.array([[dt**2 / 2, 0], [0, dt**2 / 2], [dt, 0], [0, dt]])
-    np.testing.assert_allclose(process_noise(dt, var), var * G @ G.T)
+    Gamma = np.array([[dt**2 / 2, 0], [0, dt**2 / 2], [dt, 0], [0, dt]])  # how an acceleration moves [p, v]
+    np.testing.assert_allclose(process_noise(dt, var), var * Gamma @ Gamma.T)
     with pytest.raises(ValueError, match="accel_var"):
         process_noise(dt, -1.0)
 
@@ -158,3 +159,79 @@ def test_honest_filter_nees_is_chi_square():
     eps = nees(batch.truth, mu, Sig)[:, -1]  # one value per track at the last step
     assert eps.mean() == pytest.approx(4.0, abs=0.25)  # chi2(4): mean 4, variance 8
     assert eps.var() == pytest.approx(8.0, rel=0.2)
+
+
+# --------------------------------------------------------------------------- what a run record says of itself
+def test_estimates_measure_themselves_against_their_run():
+    run = simulate_target(2)
+    est = filter_target(run, process_noise(DT, 10.0), np.eye(2))
+    assert est.run is run
+    dist = np.hypot(*(est.mu[:, :2] - run.truth[:, :2]).T)
+    np.testing.assert_allclose(est.position_error(), dist)
+    assert est.lag_in_turns() == pytest.approx(dist[run.turning].mean())
+    p = est.mu[START_STEPS:, :2]
+    assert est.roughness() == pytest.approx(
+        np.mean([np.linalg.norm(p[i + 1] - 2 * p[i] + p[i - 1]) for i in range(1, len(p) - 1)])
+    )
+    assert roughness(run.z) > 5 * est.roughness()  # the tuned estimate is far smoother than the readings
+    sx, sy = np.sqrt(np.linalg.eigvalsh(est.Sig[50, :2, :2]))
+    assert est.ellipse_radius(50) == pytest.approx(2 * max(sx, sy))
+    assert est.ellipse_radius(50, nsig=1.0) == pytest.approx(max(sx, sy))
+
+
+def test_honesty_averages_the_position_nees_and_counts_one_draw_per_second():
+    run = simulate_target(4)
+    est = filter_target(run, process_noise(DT, 10.0), np.eye(2))
+    h = est.honesty()
+    k = np.arange(START_STEPS, run.t.size)
+    err = est.mu[k, :2] - run.truth[k, :2]
+    eta = [e @ np.linalg.inv(S) @ e for e, S in zip(err, est.Sig[k, :2, :2], strict=True)]
+    assert h.mean_nees == pytest.approx(np.mean(eta))
+    assert h.draws == round(k.size * DT / 1.0) == 14
+    assert (h.low, h.high) == nees_band(14, 2, 0.95)
+    assert h.verdict == "honest"
+    assert filter_target(run, process_noise(DT, 10.0), 100 * np.eye(2)).honesty().verdict == "timid"
+    assert filter_target(run, process_noise(DT, 1e-3), np.eye(2)).honesty().verdict == "over-confident"
+    assert filter_target(run, process_noise(DT, 10.0), 0.01 * np.eye(2)).honesty().verdict == "over-confident"
+
+
+def test_tuning_table_prints_one_line_per_filter_and_the_readings():
+    run = simulate_target(0)
+    ests = {
+        "a": filter_target(run, process_noise(DT, 10.0), np.eye(2)),
+        "b": filter_target(run, process_noise(DT, 1e-3), np.eye(2)),
+    }
+    lines = run.tuning_table(ests).splitlines()
+    assert lines[0].split() == [
+        "filter",
+        "assumes",
+        "K",
+        "lag",
+        "in",
+        "turns",
+        "(m)",
+        "roughness",
+        "(m)",
+        "mean",
+        "NEES",
+        "verdict",
+    ]
+    assert [line.split()[0] for line in lines[2:]] == ["a", "b", "the"]
+    a = ests["a"]
+    assert lines[2].split()[1:] == [f"{a.K[-1, 0, 0]:.3f}", f"{a.lag_in_turns():.2f}", f"{a.roughness():.2f}",
+                                     f"{a.honesty().mean_nees:.2f}", "honest"]  # fmt: skip
+    assert lines[3].split()[-1] == "over-confident"
+    assert lines[4].split()[2:] == [f"{np.linalg.norm(run.z - run.truth[:, :2], axis=1)[run.turning].mean():.2f}",
+                                    f"{roughness(run.z):.2f}"]  # fmt: skip
+
+
+def test_nees_table_prints_the_band_and_one_line_per_assumption():
+    batch = simulate_tracks(50, 30, seed=1)
+    text = batch.nees_table({"true": (batch.R, batch.Q), "small Q": (batch.R, 0.1 * batch.Q)})
+    low, high = nees_band(50, 4)
+    lines = text.splitlines()
+    assert lines[0] == f"band [{low:.2f}, {high:.2f}] for 50 tracks"
+    mu, Sig = filter_tracks(batch, batch.R, 0.1 * batch.Q)
+    eta_bar = nees(batch.truth, mu, Sig).mean(axis=0)
+    small = lines[-1].split()
+    assert small[:3] == ["small", "Q", f"{eta_bar.mean():.2f}"] and small[-2] == "100%"  # all above the band
