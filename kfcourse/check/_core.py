@@ -15,6 +15,7 @@ import contextlib
 import copy
 import html
 import io
+import re
 import traceback
 import warnings
 from collections.abc import Callable, Mapping
@@ -80,6 +81,8 @@ MISTAKES = {
     "n_not_sqrt_n": "the spread grows with n instead of √n",
     "divides_by_sqrt_n": "σ is divided by √n instead of multiplied by it",
     "off_by_one": "the number of steps is off by one",
+    "root_of_sigma_n": "the square root is taken of σ n instead of the summed variances n σ²",
+    "elementwise_not_matmul": "* (entry by entry) is used where the matrix product @ belongs",
     "scalar_only": "it works for one number but not for an array of them",
     "transpose_on_left": "the transpose is on the left-hand A: Aᵀ Σ A instead of A Σ Aᵀ",
     "b_in_covariance": "the shift b is added to the covariance",
@@ -97,6 +100,7 @@ MISTAKES = {
     "no_gate": "readings the gate refuses are used",
     "used_wrong": "the used flags do not say which readings were used",
     "no_predict_when_blind": "the prediction is skipped when no reading is in view",
+    "deviations_from_f_mu": "the covariance takes deviations from f(μ) instead of from the mean μ_y",
 }
 
 
@@ -346,6 +350,11 @@ def _gap(expected, got, returns: tuple[str, ...]) -> float:
     return max(float(np.max(np.abs(np.asarray(g, dtype=float).reshape(np.shape(e)) - e))) for e, g in pairs)
 
 
+def _sentence(hint: str) -> str:
+    """The hint with a capital first letter when it starts with a word; a symbol (x, n, θ) stays as it is."""
+    return hint[:1].upper() + hint[1:] if re.match(r"[a-z]{2}", hint) else hint
+
+
 def run_check(
     name: str,
     student_fn: Callable,
@@ -422,7 +431,7 @@ def run_check(
         variant = _likely_mistake(student_fn, variants, cases, expected, number, returns, pair)
         if variant is not None:
             mistake = variant.mistake
-            hint = f"Likely mistake: {MISTAKES[mistake]}. {variant.hint[:1].upper()}{variant.hint[1:]} See {where}."
+            hint = f"Likely mistake: {MISTAKES[mistake]}. {_sentence(variant.hint)} See {where}."
         message = "\n".join([headline, details, hint])
         return CheckResult(False, mistake, message, headline, details, hint)
     if approximation is not None:

@@ -53,7 +53,7 @@ def drift_sigma(student_fn, seed: int = 0) -> CheckResult:
         Variant(
             "std_not_var",
             lambda s, n: s**2 * np.asarray(n),
-            "n σ² is the variance after n steps; its square root, σ √n, is the spread asked for.",
+            "The variance after n steps is n σ²; its square root, σ √n, is the spread asked for.",
         ),
         Variant(
             "n_not_sqrt_n",
@@ -64,6 +64,11 @@ def drift_sigma(student_fn, seed: int = 0) -> CheckResult:
             "divides_by_sqrt_n",
             lambda s, n: s / np.sqrt(n),
             "Dividing by √n is the spread of an average of n readings; the sum of n step errors spreads as σ √n.",
+        ),
+        Variant(
+            "root_of_sigma_n",
+            lambda s, n: np.sqrt(s * np.asarray(n)),
+            "The root is of the summed variances, n σ², not of σ n: σ_n = √(n σ²) = σ √n.",
         ),
         Variant(
             "off_by_one",
@@ -78,7 +83,7 @@ def drift_sigma(student_fn, seed: int = 0) -> CheckResult:
         Variant(
             "scalar_only",
             lambda s, n: s * math.sqrt(n),
-            "n may be an array of step counts: np.sqrt takes the root of each, math.sqrt only of one number.",
+            "The step counts may come as an array: np.sqrt takes the root of each, math.sqrt only of one number.",
         ),
     ]
     _function(student_fn, "drift_sigma")
@@ -147,6 +152,11 @@ def affine_gaussian(student_fn, seed: int = 0) -> CheckResult:
     where = "chapter 2, closure property 1: Y = A X + b ~ N(A μ + b, A Σ Aᵀ)"
     sandwich = "The covariance gets A on both sides, A Σ Aᵀ; in one dimension that is A² σ², not A σ²."
     variants = [
+        Variant(
+            "elementwise_not_matmul",
+            lambda mu, S, A, b: (A @ mu + b, A * S * A.T),
+            "* multiplies entry by entry, which agrees with the sandwich only for 1 x 1 arrays: write A @ Sig @ A.T.",
+        ),
         Variant("a_not_squared", lambda mu, S, A, b: (A @ mu + b, A @ S), sandwich),
         Variant("a_not_squared", lambda mu, S, A, b: (A @ mu + b, A * S), sandwich),
         Variant(

@@ -182,7 +182,7 @@ def _unscented_with(
     chi, wm, wc = _sigma_points_with(mu, Sig, lam, weights=weights, scale=scale)
     Y = f(chi) if points == "f" else chi  # Y_i = f(chi_i)
     mu_y = f(mu) if center == "f_of_mu" else (Y.mean(axis=0) if weights == "plain" else wm @ Y)  # sum w_i Y_i
-    d = Y if center == "none" else Y - mu_y
+    d = Y if center == "none" else Y - (Y[0] if center == "deviations_from_f_mu" else mu_y)
     if weights == "plain":
         return mu_y, d.T @ d / len(Y)
     if weights == "np_cov":
@@ -271,6 +271,12 @@ def unscented_transform(student_fn, seed: int = 0) -> CheckResult:
             "mean_not_subtracted",
             "The covariance sums wᵢ (Yᵢ − μ_y)(Yᵢ − μ_y)ᵀ: deviations from the mean.",
             center="none",
+        ),
+        variant(
+            "deviations_from_f_mu",
+            "The deviations are from the transform's own mean μ_y = Σ wᵢ Yᵢ, not from the centre point's "
+            "image f(μ) = Y₀: the two differ whenever f bends.",
+            center="deviations_from_f_mu",
         ),
         variant("wrong_weights", PLAIN + " A plain average (dividing by 2n + 1) ignores them.", weights="plain"),
         variant("wrong_weights", PLAIN + " np.cov ignores them.", weights="np_cov"),

@@ -661,6 +661,13 @@ def unscented_mean_not_subtracted(mu, Sig, f, lam):
     return wm @ Y, (wc[:, None] * Y).T @ Y  # wrong: Y, not Y - mu_y
 
 
+def unscented_deviations_from_centre(mu, Sig, f, lam):
+    chi, wm, wc = kf.sigma_points(mu, Sig, lam)
+    Y = f(chi)
+    D = Y - f(mu)  # wrong: deviations from the centre point's image, not from the mean
+    return wm @ Y, (wc[:, None] * D).T @ D
+
+
 def unscented_plain_average(mu, Sig, f, lam):
     chi, _, _ = kf.sigma_points(mu, Sig, lam)
     Y = f(chi)

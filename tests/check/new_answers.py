@@ -40,6 +40,10 @@ def drift_math_sqrt(step_std, n):
     return step_std * math.sqrt(n)  # wrong: one number of steps only
 
 
+def drift_root_of_wrong_thing(step_std, n):
+    return np.sqrt(step_std * np.asarray(n))  # wrong: the root of sigma n, not of n sigma^2
+
+
 def drift_loop(step_std, n):
     """Adds the variances one step at a time, but starts counting at 1."""
     out = []
@@ -64,6 +68,10 @@ def affine_half(mu, Sig, A, b):
 
 def affine_scalar_thinking(mu, Sig, A, b):
     return A @ mu + b, A * Sig  # wrong: the variance times A, as if in 1-D
+
+
+def affine_star(mu, Sig, A, b):
+    return A @ mu + b, A * Sig * A.T  # wrong: * where @ belongs (right only in 1-D)
 
 
 def affine_no_transpose(mu, Sig, A, b):

@@ -139,6 +139,7 @@ CATALOGUE = {
         (answers.unscented_points_not_through_f, "f_not_applied"),
         (answers.unscented_mean_at_mu, "f_of_mean"),
         (answers.unscented_mean_not_subtracted, "mean_not_subtracted"),
+        (answers.unscented_deviations_from_centre, "deviations_from_f_mu"),
         (answers.unscented_plain_average, "wrong_weights"),
         (answers.unscented_np_cov, "wrong_weights"),
         (answers.unscented_inner_product, "outer_product_order"),
@@ -416,3 +417,12 @@ def test_the_same_seed_gives_the_same_verdict_and_another_seed_other_cases():
     assert first.message == kf.check.unicycle(answers.unicycle_y_backwards, seed=5).message
     odd = kf.check.kf_step(answers.kf_step_forgets_Bu, seed=0).details
     assert odd != kf.check.kf_step(answers.kf_step_forgets_Bu, seed=1).details
+
+
+def test_a_hint_starting_with_a_symbol_keeps_it():
+    from kfcourse.check._core import _sentence
+
+    assert _sentence("divide by the sum") == "Divide by the sum"
+    assert _sentence("x moves with cos θ") == "x moves with cos θ"  # x, not X
+    assert _sentence("n σ² is the variance") == "n σ² is the variance"
+    assert _sentence("θ + ωΔt can leave (−π, π]") == "θ + ωΔt can leave (−π, π]"

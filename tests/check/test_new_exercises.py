@@ -42,11 +42,13 @@ WRONG = [
     ("drift_sigma", a.drift_counts_start, "off_by_one"),
     ("drift_sigma", a.drift_loop, "off_by_one"),
     ("drift_sigma", a.drift_math_sqrt, "scalar_only"),
+    ("drift_sigma", a.drift_root_of_wrong_thing, "root_of_sigma_n"),
     # chapter 2: A Sig, A Sig A, A^T Sig A, variance times A, b in the covariance, b forgotten
     ("affine_gaussian", a.affine_half, "a_not_squared"),
     ("affine_gaussian", a.affine_no_transpose, "missing_transpose"),
     ("affine_gaussian", a.affine_transpose_first, "transpose_on_left"),
     ("affine_gaussian", a.affine_scalar_thinking, "a_not_squared"),
+    ("affine_gaussian", a.affine_star, "elementwise_not_matmul"),
     ("affine_gaussian", a.affine_b_everywhere, "b_in_covariance"),
     ("affine_gaussian", a.affine_no_b, "b_forgotten"),
     # chapter 6: dt^2 for dt^2/2, dt for dt^2, R diagonal, [px, vx, py, vy], F transposed, sigma_a for sigma_a^2
