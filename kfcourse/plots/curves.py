@@ -101,8 +101,10 @@ def function_panels(width: float, height: float, x_range, width_ratio: float, he
     ax_out.set_xlabel("density")
     ax_in.set_ylim(0.0, 1.0)  # until a density is shown
     ax_out.set_xlim(0.0, 1.0)
-    for axis in (ax_in.yaxis, ax_out.xaxis):  # a power-of-two top gets a tick: 0, 4, 8, 12, 16
-        axis.set_major_locator(MaxNLocator(nbins=4, steps=[1, 2, 4, 5, 10]))
+    ax_in.yaxis.set_major_locator(MaxNLocator(nbins=4, steps=[1, 2, 4, 5, 10]))  # a power-of-two top: 0, 4, 8, 12, 16
+    # The layout is found once, for the first frame; the density axis's last label would sit on the figure's right
+    # edge whenever its limit changes, so no label is drawn at that end.
+    ax_out.xaxis.set_major_locator(MaxNLocator(nbins=4, steps=[1, 2, 4, 5, 10], prune="upper"))
     ax_txt.axis("off")
     return FunctionPanels(fig, ax_f, ax_out, ax_in, ax_txt)
 

@@ -24,7 +24,7 @@ from matplotlib.text import Text
 
 from .. import _validate as v
 from . import palette
-from .style import new_figure, nice_limit, set_limits
+from .style import fixed_width_ticks, new_figure, nice_limit, set_limits
 
 
 @dataclass(frozen=True)
@@ -80,6 +80,8 @@ def raw_vs_filtered_view(n_steps: int) -> RawVsFilteredView:
     fig, (ax, ax_err) = new_figure(8.0, 4.6, nrows=2, sharex=True, gridspec_kw={"height_ratios": [3, 2]})
     ax.set_xlim(0, n_steps - 1)
     ax.set_ylabel("position (m)")
+    for axis in (ax.yaxis, ax_err.yaxis):
+        fixed_width_ticks(axis, 4)  # the layout is found once: wider labels would push "position (m)" out
     (truth,) = ax.plot([], [], color=palette.TRUTH, lw=5, alpha=0.55, label="truth (unknown)")
     pings = ax.scatter([], [], s=14, color=palette.MEASUREMENT, alpha=0.75, label="sensor pings", zorder=3)
     (raw,) = ax.plot([], [], color=palette.MEASUREMENT, lw=1.0, alpha=0.8, label="raw: trust each ping")

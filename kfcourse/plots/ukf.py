@@ -88,7 +88,7 @@ def transform_moments_chart(y, ukf, ekf, bins: int = 80, y_range=None):
         ls="--",
         label=f"EKF N({mean_e:.3g}, {var_e:.3g})",
     )
-    # The samples' mean: a wide band under the filters' dotted means, visible even where one of them lies on it.
+    # The samples' mean: a wide band under the filters' thin mean lines, visible even where one of them lies on it.
     ax.axvline(float(y.mean()), color=palette.TRUTH, lw=5.0, alpha=0.5, zorder=1.5, label="samples' mean")
     for mean, style in ((mean_u, "-"), (mean_e, "--")):
         ax.axvline(mean, color=palette.ESTIMATE, lw=1.0, ls=style)
@@ -103,6 +103,7 @@ def transform_moments_chart(y, ukf, ekf, bins: int = 80, y_range=None):
 # The UKF and the EKF on one picture: both teal (estimates), the UKF solid and wide and pale, the EKF dashed over it.
 UKF_STYLE = {"color": palette.ESTIMATE, "lw": 3.2, "alpha": 0.5, "solid_capstyle": "butt"}
 EKF_STYLE = {"color": palette.ESTIMATE, "lw": 1.4, "ls": "--"}
+HANDLE = 2.5  # legend handle length (font sizes) that holds three whole dashes of EKF_STYLE, not a dash-dot look
 
 
 def _rms(error) -> float:
@@ -140,13 +141,13 @@ def filter_comparison_chart(ekf, ukf):
     ax_map.set_aspect("equal", adjustable="datalim")
     ax_map.set_xlabel("x (m)")
     ax_map.set_ylabel("y (m)")
-    ax_map.legend(loc="lower center", bbox_to_anchor=(0.5, 1.0), ncol=4, fontsize=8, frameon=False)
+    ax_map.legend(loc="lower center", bbox_to_anchor=(0.5, 1.0), ncol=4, fontsize=8, frameon=False, handlelength=HANDLE)
     ax_e.plot(ukf.t, ukf.error, label=f"UKF, RMS {_rms(ukf.error):.3f} m", **UKF_STYLE)
     ax_e.plot(ekf.t, ekf.error, label=f"EKF, RMS {_rms(ekf.error):.3f} m", **EKF_STYLE)
     ax_e.set_xlabel("time (s)")
     ax_e.set_ylabel("position error (m)")
     ax_e.set_ylim(bottom=0.0)
-    ax_e.legend(loc="upper left", fontsize=8)
+    ax_e.legend(loc="upper left", fontsize=8, handlelength=HANDLE)
     return fig
 
 
@@ -255,7 +256,8 @@ def sigma_points_view(
     guides = LineCollection([], colors=palette.PREDICTION, lw=0.9, linestyles=":")
     ax_f.add_collection(guides)
     on_curve = _sigma_dots(ax_f, palette.PREDICTION)
-    ax_f.legend(loc="upper center", fontsize=9)  # the middle top: empty above all three curves
+    # Above the panel: inside it, sin x near its peak would run under the legend.
+    ax_f.legend(loc="lower center", bbox_to_anchor=(0.5, 1.0), ncol=2, fontsize=9, frameon=False)
     (density,) = ax_in.plot(x, x, color=palette.PREDICTION, lw=2)
     on_input = _sigma_dots(ax_in, palette.PREDICTION)
     sampled = Polygon([[0, 0], [1, 1], [0, 1]], closed=True, facecolor=palette.TRUTH, alpha=0.45, lw=0, label="sampled")
@@ -265,7 +267,7 @@ def sigma_points_view(
     on_output = _sigma_dots(ax_out, palette.ESTIMATE, transform=ax_out.get_yaxis_transform())  # x: panel fraction
     # Above the panel, where no output density can reach it.
     ax_out.legend(
-        loc="lower center", bbox_to_anchor=(0.5, 1.0), ncol=3, fontsize=8, frameon=False, handlelength=1.4,
+        loc="lower center", bbox_to_anchor=(0.5, 1.0), ncol=3, fontsize=8, frameon=False, handlelength=2.0,
         columnspacing=0.8, handletextpad=0.4,
     )  # fmt: skip
     # The readout: row names and numbers in one monospace grid (only x² has the row "exact").

@@ -32,33 +32,33 @@ def simulate_line(
 ) -> LineRun:
     r"""Drive a robot along a line, read a noisy sensor, and filter with a 1-D KF.
 
-        Truth: :math:`x_t = x_{t-1} + u_t + w_t` with :math:`w_t \sim N(0, \sigma_{step}^2)`
-        and a command :math:`u_t = v \sin(2\pi t / T)`: the robot drives out along
-        the line and back again.  Sensor:
-        :math:`z_t = x_t + \sigma_{sensor} e_t`.  The filter runs :func:`kf_1d_step`
-        with ``R = step_std**2`` and ``Q = sensor_std**2``, starting from the same known start as
+    Truth: :math:`x_t = x_{t-1} + u_t + \varepsilon_t` with :math:`\varepsilon_t \sim N(0, \sigma_{step}^2)`
+    (the course's process noise) and a command :math:`u_t = v \sin(2\pi t / T)`: the robot drives out
+    along the line and back again.  Sensor: :math:`z_t = x_t + \delta_t` with
+    :math:`\delta_t \sim N(0, \sigma_{sensor}^2)`.  The filter runs :func:`kf_1d_step`
+    with ``R = step_std**2`` and ``Q = sensor_std**2``, starting from the same known start as
     dead reckoning with variance ``step_std**2`` (one step's disturbance).  Dead reckoning counts the
-        commands only, :math:`\hat x_t = \sum_{k \le t} u_k`, so its error is the sum of the
-        disturbances and spreads like :math:`\sigma_{step}\sqrt{t}` (chapter 0's drift).
+    commands only, :math:`\hat x_t = \sum_{k \le t} u_k`, so its error is the sum of the
+    disturbances and spreads like :math:`\sigma_{step}\sqrt{t}` (chapter 0's drift).
 
-        The standard-normal draws depend only on ``seed`` and ``n_steps``, so changing
-        ``sensor_std`` rescales the same noise: the picture changes smoothly.
+    The standard-normal draws depend only on ``seed`` and ``n_steps``, so changing
+    ``sensor_std`` rescales the same noise: the picture changes smoothly.
 
-        Parameters
-        ----------
-        n_steps : int
-            Number of steps (>= 2).
-        step_std : float
-            Disturbance per step (m), > 0.
-        sensor_std : float
-            Sensor noise (m), > 0.
-        speed : float
-            Largest commanded move per step, ``v`` (m).
-        seed : int
+    Parameters
+    ----------
+    n_steps : int
+        Number of steps (>= 2).
+    step_std : float
+        Disturbance per step (m), > 0.
+    sensor_std : float
+        Sensor noise (m), > 0.
+    speed : float
+        Largest commanded move per step, ``v`` (m).
+    seed : int
 
-        Returns
-        -------
-        LineRun
+    Returns
+    -------
+    LineRun
     """
     n_steps = v.whole(n_steps, "n_steps", 2)
     step_std = v.positive(step_std, "step_std", "a standard deviation", "m")

@@ -41,3 +41,26 @@ def test_every_slider_extreme_draws_finite_numbers(extreme):
         demo.controls["m"].value, demo.controls["s"].value = m, s
         mean_e, var_e = demo.model.ekf()
         assert np.isfinite([mean_e, var_e, *demo.model.sampled()]).all()
+
+
+@pytest.mark.parametrize("demo_name", ["linearization", "sigma_points"])  # chapter 7's and chapter 9's panels
+@pytest.mark.parametrize("name", ["x²", "sin x", "range √(x² + 1)"])
+def test_no_tick_label_leaves_the_picture(demo_name, name):
+    """The layout is found for the first frame; when the density axis's limit changes (s = 1.5 with x² makes
+    it 2), no tick label may be cut off by the figure's edge."""
+    demo = getattr(kf.demos, demo_name)(seed=0)
+    fig = demo.renderer.fig
+    demo.controls["function"].value = name
+    for m, s in ((1.0, 1.5), (0.0, 1.0), (1.5, 1.5), (2.0, 0.05), (-2.0, 0.5), (2.0, 0.05)):
+        demo.controls["m"].value, demo.controls["s"].value = m, s
+        renderer = fig.canvas.get_renderer()
+        width, height = fig.bbox.width, fig.bbox.height
+        for axis in [a for ax in fig.axes for a in (ax.xaxis, ax.yaxis)]:
+            lo, hi = sorted(axis.get_view_interval())
+            for tick in axis.get_major_ticks():
+                label = tick.label1
+                if not (label.get_visible() and label.get_text().strip() and lo <= tick.get_loc() <= hi):
+                    continue  # matplotlib keeps ticks just outside the limits, and draws nothing for them
+                box = label.get_window_extent(renderer)
+                inside = box.x0 >= 0 and box.x1 <= width and box.y0 >= 0 and box.y1 <= height
+                assert inside, (demo_name, name, m, s, label.get_text())

@@ -224,3 +224,17 @@ def test_the_prose_numbers_match_the_prompts():
     for words in ("3.20 for these 4000 draws", "one sample in ten", "`seed=10` two", "within 40 cm for every seed"):
         assert words in text, words
     assert re.search(r"in every seed from 0\s+to 19", text)
+
+
+def test_exercise_2_finite_differences_are_not_an_answer_and_the_checker_says_so():
+    """The exercise calls kf.numeric_jacobian a friend for checking, not an answer: the checker tells it apart."""
+    assert "the checker can tell finite differences from the derived formula" in markdown()
+    result = kf.check.range_bearing_jacobian(lambda s, m: kf.numeric_jacobian(lambda p: kf.range_bearing(p, m), s))
+    assert not result.passed and result.mistake == "numeric_not_derived"
+    assert "finite differences" in result.message
+
+
+def test_the_chapter_links_both_neighbours_at_the_top():
+    nb = json.loads(CHAPTER.read_text(encoding="utf-8"))
+    opening = "".join(nb["cells"][1]["source"])
+    assert "(06_tracking_2d.ipynb)" in opening and "(08_ekf_localization.ipynb)" in opening

@@ -140,3 +140,38 @@ def test_prompt_4_at_two_sigma_one_true_reading_in_seven_is_lost():
     assert max(lost) <= 2
     assert 6 <= sum(n > 0 for n in lost) <= 14  # about every second scan
     assert 0.05 < sum(lost) / (4 * len(lost)) < 0.25  # about one reading in seven
+
+
+def _arc_or_line(threshold: float):
+    """The exercise's unicycle with a straight-line branch for |omega| <= threshold, else the arc formula."""
+
+    def my_unicycle(state, u, dt):
+        x, y, theta = state
+        V, omega = u
+        if abs(omega) <= threshold:  # the straight line the arc tends to as omega -> 0
+            x, y = x + V * dt * np.cos(theta), y + V * dt * np.sin(theta)
+        else:
+            x, y = (
+                x + V / omega * (np.sin(theta + omega * dt) - np.sin(theta)),
+                y + V / omega * (np.cos(theta) - np.cos(theta + omega * dt)),
+            )
+        return np.array([x, y, kf.wrap_angle(theta + omega * dt)])
+
+    return my_unicycle
+
+
+def _chord(state, u, dt):
+    x, y, theta = state
+    V, omega = u
+    half = omega * dt / 2
+    d = V * dt * np.sinc(half / np.pi)  # V dt sin(a) / a
+    return np.array([x + d * np.cos(theta + half), y + d * np.sin(theta + half), kf.wrap_angle(theta + omega * dt)])
+
+
+def test_the_exercise_passes_as_instructed_and_names_the_branch_it_warns_against():
+    """The exercise: drive the straight line whenever |omega| is tiny (not only at omega == 0), or write the chord
+    form.  Both pass the checker; the `omega == 0` branch fails on the nearly straight omega = 1e-15, named."""
+    assert kf.check.unicycle(_arc_or_line(1e-9)).passed
+    assert kf.check.unicycle(_chord).passed
+    exactly_zero = kf.check.unicycle(_arc_or_line(0.0))
+    assert not exactly_zero.passed and exactly_zero.mistake is not None and "1e-15" in exactly_zero.message

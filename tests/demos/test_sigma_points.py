@@ -91,7 +91,8 @@ def test_exact_row_only_for_x_squared():
 
 
 def test_output_legend_sits_above_the_panel_and_densities_stay_inside_it():
-    """At sin x, m = 1.5, s = 1.5 the legend is clear of the EKF's tall Gaussian (at y = 1); at x², m = 0.05,
+    """At sin x, m = 1.5, s = 1.5 the legends are clear of the EKF's tall Gaussian and of the curve's peak with its
+    centre point (both at y = 1): they sit above their panels; at x², m = 0.05,
     s = 1 both Gaussians are far narrower than the samples and run off the panel's edge, which cuts them; a
     variance of 0 (x², m = 0) is a short arrow, not a line across the panel."""
     demo = demo_at(SINE, 1.5, 1.5)
@@ -100,6 +101,8 @@ def test_output_legend_sits_above_the_panel_and_densities_stay_inside_it():
     renderer = fig.canvas.get_renderer()  # the demo has drawn the picture: extents need no new draw
     legend_box = ax_out.get_legend().get_window_extent(renderer)
     assert legend_box.y0 >= ax_out.get_window_extent(renderer).y1 - 1.0  # above the panel
+    ax_f = demo.view.panels.ax_f
+    assert ax_f.get_legend().get_window_extent(renderer).y0 >= ax_f.get_window_extent(renderer).y1 - 1.0
     demo = demo_at(SQUARE, 0.05, 1.0)
     top = demo.view.panels.ax_out.get_xlim()[1]
     assert demo.view.sampled.get_xy()[:, 0].max() <= top  # the histogram fits
