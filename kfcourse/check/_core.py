@@ -352,7 +352,7 @@ def _gap(expected, got, returns: tuple[str, ...]) -> float:
 
 def _sentence(hint: str) -> str:
     """The hint with a capital first letter when it starts with a word; a symbol (x, n, θ) stays as it is."""
-    return hint[:1].upper() + hint[1:] if re.match(r"[a-z]{2}", hint) else hint
+    return hint[:1].upper() + hint[1:] if re.match(r"[a-z]{2,}\b(?![.(])", hint) else hint  # not accel_var, np.sqrt
 
 
 def run_check(

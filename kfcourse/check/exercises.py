@@ -190,11 +190,11 @@ def _cv_reference(dt, accel_var):
 
 
 def _cv_with(dt, accel_var, *, pos=None, var=None, diagonal=False, interleaved=False, transposed=False):
-    """F and R of chapter 6, with a knob for each mistake: ``pos`` replaces ½Δt² in G, ``var`` σa²."""
+    """F and R of chapter 6, with a knob for each mistake: ``pos`` replaces ½Δt² in Γ, ``var`` σa²."""
     I, Z = np.eye(2), np.zeros((2, 2))
     F = np.block([[I, dt * I], [Z, I]])
-    G = np.vstack([(0.5 * dt**2 if pos is None else pos) * I, dt * I])
-    R = (accel_var if var is None else var) * G @ G.T
+    Gamma = np.vstack([(0.5 * dt**2 if pos is None else pos) * I, dt * I])
+    R = (accel_var if var is None else var) * Gamma @ Gamma.T
     if diagonal:
         R = np.diag(np.diag(R))
     if transposed:

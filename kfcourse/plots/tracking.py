@@ -187,7 +187,7 @@ def nees_view(t, band, dof: int, n_tracks: int, y_range=(0.5, 500.0), width: flo
     ax.set_xlim(t[0], t[-1])
     ax.set_ylim(*y_range)
     ax.set_xlabel("time (s)")
-    ax.set_ylabel(r"average NEES  $\bar\eta$")
+    ax.set_ylabel("average NEES")
     ax.axhspan(low, high, color=palette.TRUTH, alpha=0.35, lw=0, label=f"95 % band for {n_tracks} honest runs")
     ax.axhline(dof, color=palette.INK, lw=1.0, ls="--", label=f"{dof} = state dimension")
     (curve,) = ax.plot(

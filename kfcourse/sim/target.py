@@ -119,16 +119,16 @@ class TargetEstimates(Record):
     def honesty(self, level: float = 0.95) -> Honesty:
         r"""Is the position ellipse honest?  Chapter 6's NEES test on one run.
 
-        :math:`\eta_k = (p_k - \mu_{p,k})^\top \Sigma_{pp,k}^{-1} (p_k - \mu_{p,k})`, the NEES of the
-        position (the ellipse drawn), is :math:`\chi^2(2)` at each step if the filter is honest.
-        Its average :math:`\bar\eta` over the tracking steps is compared with the band of
+        :math:`\mathrm{NEES}_k = (p_k - \mu_{p,k})^\top \Sigma_{pp,k}^{-1} (p_k - \mu_{p,k})`, the NEES of
+        the position (the ellipse drawn), is :math:`\chi^2(2)` at each step if the filter is honest.
+        Its average :math:`\overline{\mathrm{NEES}}` over the tracking steps is compared with the band of
         :func:`nees_band`.  The steps of one run are not independent draws: an error takes about
         ``FADE_TIME`` to fade, so the band counts one draw per ``FADE_TIME`` of tracking.
         """
-        eta = nees(self.run.truth[START_STEPS:, :2], self.mu[START_STEPS:, :2], self.Sig[START_STEPS:, :2, :2])
-        draws = max(round(eta.size * self.run.dt / FADE_TIME), 1)
+        nees_k = nees(self.run.truth[START_STEPS:, :2], self.mu[START_STEPS:, :2], self.Sig[START_STEPS:, :2, :2])
+        draws = max(round(nees_k.size * self.run.dt / FADE_TIME), 1)
         low, high = nees_band(draws, 2, level)
-        mean_nees = float(eta.mean())
+        mean_nees = float(nees_k.mean())
         verdict = "timid" if mean_nees < low else "over-confident" if mean_nees > high else "honest"
         return Honesty(mean_nees, low, high, draws, verdict)
 
@@ -276,11 +276,11 @@ class TrackBatch(Record):
         rows = []
         for label, (R, Q) in assumed.items():
             mu, Sig = filter_tracks(self, R, Q)
-            eta_bar = nees(self.truth, mu, Sig).mean(axis=0)  # average over the tracks, at each step
+            avg_nees = nees(self.truth, mu, Sig).mean(axis=0)  # average over the tracks, at each step
             error = np.linalg.norm(mu[:, :, :2] - self.truth[:, :, :2], axis=2).mean()
-            below, above = np.mean(eta_bar < low), np.mean(eta_bar > high)
+            below, above = np.mean(avg_nees < low), np.mean(avg_nees > high)
             shares = [f"{share:.0%}" for share in (below, 1.0 - below - above, above)]
-            rows.append([label, f"{eta_bar.mean():.2f}", *shares, f"{error:.2f}"])
+            rows.append([label, f"{avg_nees.mean():.2f}", *shares, f"{error:.2f}"])
         header = ["filter assumes", "mean NEES", "below", "inside", "above", "error (m)"]
         return f"band [{low:.2f}, {high:.2f}] for {n_tracks} tracks\n" + text_table(header, rows)
 
@@ -353,10 +353,10 @@ def filter_tracks(batch: TrackBatch, R, Q) -> tuple[np.ndarray, np.ndarray]:
 
 
 def nees(truth, mu, Sig) -> np.ndarray:
-    r"""Normalised estimation error squared, :math:`\eta = (x - \mu)^\top \Sigma^{-1} (x - \mu)`.
+    r"""Normalised estimation error squared, :math:`\mathrm{NEES} = (x - \mu)^\top \Sigma^{-1} (x - \mu)`.
 
     If the filter's :math:`\Sigma` is honest (its errors really are
-    :math:`N(0, \Sigma)`), :math:`\eta` follows a chi-square distribution with
+    :math:`N(0, \Sigma)`), the NEES follows a chi-square distribution with
     n degrees of freedom: on average it equals n.  Introduced in chapter 6.
 
     Parameters

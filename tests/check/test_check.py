@@ -426,3 +426,5 @@ def test_a_hint_starting_with_a_symbol_keeps_it():
     assert _sentence("x moves with cos θ") == "x moves with cos θ"  # x, not X
     assert _sentence("n σ² is the variance") == "n σ² is the variance"
     assert _sentence("θ + ωΔt can leave (−π, π]") == "θ + ωΔt can leave (−π, π]"
+    assert _sentence("accel_var is already the variance") == "accel_var is already the variance"  # a name in code
+    assert _sentence("np.sqrt takes the root of each") == "np.sqrt takes the root of each"

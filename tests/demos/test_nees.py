@@ -10,6 +10,8 @@ import pytest
 import kfcourse as kf
 from kfcourse.demos.nees import DOF, N_STEPS, N_TRACKS
 from kfcourse.sim.target import filter_tracks, nees, nees_band
+from tests.demos.layout import readout
+from tests.demos.test_tracker import LAPTOP_PX, OUTPUT_PX, estimated_height, readout_lines, rows_fit_the_output
 
 
 def make(seed=0):
@@ -98,3 +100,15 @@ def test_new_run_draws_new_tracks_and_keeps_the_mistuning():
     mu, Sig = filter_tracks(m.batch, *m.assumed())
     np.testing.assert_allclose(m.avg_nees, nees(m.batch.truth, mu, Sig).mean(axis=0))
     assert bytes(demo.image.value) != picture and "run 1:" in demo.children[2].value
+
+
+def test_picture_and_controls_fit_a_laptop():
+    demo = make()
+    lines = 0
+    for which in ("R", "Q"):
+        for factor in (0.01, 1.0, 100.0):
+            set_mistune(demo, which, factor)
+            lines = max(lines, readout_lines(readout(demo)))
+    assert lines == 3  # no line of the readout wraps
+    assert demo.display_width == OUTPUT_PX and rows_fit_the_output(demo)
+    assert estimated_height(demo, lines) <= LAPTOP_PX

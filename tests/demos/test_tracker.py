@@ -4,13 +4,27 @@ the run record.  The chapter's "Try this" prompts are tested in test_prompts_ch0
 
 from __future__ import annotations
 
+import html
+import io
+import itertools
+import re
+
 import numpy as np
 import pytest
+from matplotlib import font_manager
+from PIL import Image, ImageFont
 
 import kfcourse as kf
 from kfcourse.filters.gaussian import ellipse_axes
 from kfcourse.sim.target import START_STEPS, filter_target, process_noise
-from tests.demos.layout import readout
+from tests.demos.layout import readout, widgets_in
+
+# A 1280x800 laptop: the demo's picture and controls (caption aside) within 680 px, in an output 848 px wide
+# (what tests/browser/test_notebooks_in_lab.py measures in JupyterLab).
+LAPTOP_PX, OUTPUT_PX = 680, 848
+ROW_PX = 34  # a row of sliders, buttons or toggles: 28 px high with its margins, rounded up
+READOUT_FONT_PX, READOUT_LINE = 13, 1.5  # the readouts' font size and line height, rounded up
+READOUT_MARGIN_PX = 4
 
 
 def make(seed=0):
@@ -191,3 +205,42 @@ def test_jitter_grows_with_R_and_K_goes_to_1():
     assert rough == sorted(rough) and K == sorted(K)
     assert K[-1] > 0.99 and rough[-1] > 5 * rough[0]
     assert rough[-1] == pytest.approx(roughness(m.run.z), rel=0.05)  # as rough as the readings
+
+
+# --------------------------------------------------------------------------- fits a laptop
+def readout_lines(text: str) -> int:
+    """How many lines the readout takes in the output: its lines, each measured in DejaVu Sans (wider than the
+    notebook's fonts, so the estimate errs on the tall side) and wrapped at the output's width."""
+    font = ImageFont.truetype(font_manager.findfont("DejaVu Sans"), READOUT_FONT_PX)
+    plain = html.unescape(re.sub(r"<[^>]+>", "", text.replace("<br>", "\n")))
+    return sum(int(font.getlength(line) // OUTPUT_PX) + 1 for line in plain.split("\n"))
+
+
+def estimated_height(demo, lines: int) -> float:
+    """Picture + controls (CSS px): the picture at the demo's width and its own shape, a readout of ``lines``
+    lines, and one ROW_PX per row of controls."""
+    width, height = Image.open(io.BytesIO(bytes(demo.image.value))).size
+    rows = [c for c in demo.children[2:] if "kf-readout" not in c._dom_classes]
+    readout_px = lines * READOUT_FONT_PX * READOUT_LINE + READOUT_MARGIN_PX
+    return min(demo.display_width, OUTPUT_PX) * height / width + readout_px + len(rows) * ROW_PX
+
+
+def rows_fit_the_output(demo) -> bool:
+    """Every row of controls is no wider than the output (the widths the controls ask for)."""
+    for row in demo.children[2:]:
+        widths = [int(str(w.layout.width).removesuffix("px")) for w in widgets_in(row) if w.layout.width]
+        if sum(widths) > OUTPUT_PX:
+            return False
+    return True
+
+
+def test_picture_and_controls_fit_a_laptop_at_every_corner_of_the_sliders():
+    demo = make()
+    c = demo.controls
+    lines = 0
+    for sigma, q, r, k in itertools.product([0.1, 5.0], [1e-3, 1.0, 1e4], [1e-3, 10.0, 1e7], [0, 95, 159]):
+        c["sigma"].value, c["Q"].value, c["R"].value, c["frame"].value = sigma, q, r, k
+        lines = max(lines, readout_lines(readout(demo)))
+    assert lines == 4  # no line of the readout wraps
+    assert demo.display_width == OUTPUT_PX and rows_fit_the_output(demo)
+    assert estimated_height(demo, lines) <= LAPTOP_PX

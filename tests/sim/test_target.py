@@ -185,8 +185,8 @@ def test_honesty_averages_the_position_nees_and_counts_one_draw_per_second():
     h = est.honesty()
     k = np.arange(START_STEPS, run.t.size)
     err = est.mu[k, :2] - run.truth[k, :2]
-    eta = [e @ np.linalg.inv(S) @ e for e, S in zip(err, est.Sig[k, :2, :2], strict=True)]
-    assert h.mean_nees == pytest.approx(np.mean(eta))
+    nees_k = [e @ np.linalg.inv(S) @ e for e, S in zip(err, est.Sig[k, :2, :2], strict=True)]
+    assert h.mean_nees == pytest.approx(np.mean(nees_k))
     assert h.draws == round(k.size * DT / 1.0) == 14
     assert (h.low, h.high) == nees_band(14, 2, 0.95)
     assert h.verdict == "honest"
@@ -232,6 +232,6 @@ def test_nees_table_prints_the_band_and_one_line_per_assumption():
     lines = text.splitlines()
     assert lines[0] == f"band [{low:.2f}, {high:.2f}] for 50 tracks"
     mu, Sig = filter_tracks(batch, batch.R, 0.1 * batch.Q)
-    eta_bar = nees(batch.truth, mu, Sig).mean(axis=0)
+    avg_nees = nees(batch.truth, mu, Sig).mean(axis=0)
     small = lines[-1].split()
-    assert small[:3] == ["small", "Q", f"{eta_bar.mean():.2f}"] and small[-2] == "100%"  # all above the band
+    assert small[:3] == ["small", "Q", f"{avg_nees.mean():.2f}"] and small[-2] == "100%"  # all above the band
