@@ -126,11 +126,17 @@ def _rows(x, name: str, n: int) -> np.ndarray:
 
 
 def _pose_control(state, u, dt, one_pose: bool = False):
-    """Checked pose (3,) (or, unless ``one_pose``, a stack (N, 3)), control (2,) and time step."""
+    """Checked pose (3,) and control (2,), or unless ``one_pose`` a stack of poses (N, 3) with one
+    control (2,) for all or one each (N, 2); and the time step."""
     s = _rows(state, "state", 3)
-    if one_pose and s.ndim != 1:  # a Jacobian is taken at one point
-        raise ValueError(f"state must have shape (3,), got {s.shape}")
-    return s, v.vector(u, "u", 2), v.positive(dt, "dt", "a time step", "s")
+    if one_pose:  # a Jacobian is taken at one point, for one control
+        if s.ndim != 1:
+            raise ValueError(f"state must have shape (3,), got {s.shape}")
+        return s, v.vector(u, "u", 2), v.positive(dt, "dt", "a time step", "s")
+    c = _rows(u, "u", 2)
+    if c.ndim == 2 and (s.ndim != 2 or len(c) != len(s)):
+        raise ValueError(f"u of shape {c.shape} needs as many poses, one a row; state has shape {s.shape}")
+    return s, c, v.positive(dt, "dt", "a time step", "s")
 
 
 def unicycle(state, u, dt) -> np.ndarray:
@@ -152,8 +158,9 @@ def unicycle(state, u, dt) -> np.ndarray:
     state : array_like, shape (3,) or (N, 3)
         Pose ``[x, y, theta]``, or N poses one a row (as the UKF passes its
         sigma points).
-    u : array_like, shape (2,)
-        Control ``[V, omega]``.
+    u : array_like, shape (2,) or (N, 2)
+        Control ``[V, omega]``, or one for each of the N poses (as the particle filter of
+        chapter 11 passes each particle its own noisy odometry).
     dt : float
         Time step in s, > 0.
 
@@ -162,7 +169,8 @@ def unicycle(state, u, dt) -> np.ndarray:
     ndarray, shape (3,) or (N, 3)
         Next pose, heading wrapped to (-pi, pi].
     """
-    s, (V, w), dt = _pose_control(state, u, dt)
+    s, c, dt = _pose_control(state, u, dt)
+    V, w = c[..., 0], c[..., 1]
     x, y, th = s[..., 0], s[..., 1], s[..., 2]
     half = 0.5 * w * dt
     d = V * dt * np.sinc(half / np.pi)  # chord length: V dt sin(half) / half (np.sinc(t) = sin(pi t) / (pi t))

@@ -8,6 +8,17 @@ from .gaussian import add_gaussians, affine_gaussian, ellipse_axes, fuse, gaussi
 from .kalman import kf_gain, kf_predict, kf_step, kf_update
 from .kalman_1d import KF1DCycle, kf_1d_cycle, kf_1d_gain, kf_1d_predict, kf_1d_step, kf_1d_update, steady_state_1d
 from .localization import ekf_localization_step
+from .particle import (
+    effective_sample_size,
+    inject_random,
+    normalise,
+    pf_estimate,
+    pf_predict,
+    pf_weight,
+    resample_multinomial,
+    resample_stratified,
+    resample_systematic,
+)
 from .ukf import sigma_points, ukf_predict, ukf_update, unscented_1d, unscented_transform
 
 __all__ = [
@@ -17,12 +28,14 @@ __all__ = [
     "associate",
     "bayes_predict",
     "bayes_update",
+    "effective_sample_size",
     "ekf_localization_step",
     "ekf_predict",
     "ekf_update",
     "ellipse_axes",
     "fuse",
     "gaussian_pdf",
+    "inject_random",
     "kf_1d_cycle",
     "kf_1d_gain",
     "kf_1d_predict",
@@ -36,6 +49,13 @@ __all__ = [
     "mahalanobis",
     "mass_inside",
     "mvn_pdf",
+    "normalise",
+    "pf_estimate",
+    "pf_predict",
+    "pf_weight",
+    "resample_multinomial",
+    "resample_stratified",
+    "resample_systematic",
     "sigma_points",
     "steady_state_1d",
     "ukf_predict",

@@ -348,3 +348,22 @@ def test_a_jacobian_of_a_stack_of_poses_is_refused(jacobian):
 def test_a_three_dimensional_state_is_refused():
     with pytest.raises(ValueError, match=r"^state must have shape \(3,\) or \(N, 3\)"):
         kf.unicycle(np.zeros((2, 2, 3)), [0.5, 0.1], 0.2)
+
+
+def test_unicycle_moves_each_pose_by_its_own_control():
+    """N poses with N controls (chapter 11's particles) move as each pose alone would."""
+    rng = np.random.default_rng(3)
+    poses = rng.normal(size=(5, 3))
+    controls = np.column_stack([rng.uniform(0, 2, 5), rng.normal(0, 1, 5)])
+    moved = kf.unicycle(poses, controls, 0.2)
+    for pose, u, out in zip(poses, controls, moved, strict=True):
+        np.testing.assert_array_equal(out, kf.unicycle(pose, u, 0.2))
+
+
+def test_unicycle_refuses_controls_that_do_not_pair_with_the_poses():
+    with pytest.raises(ValueError, match="u of shape"):
+        kf.unicycle(np.zeros((4, 3)), np.zeros((3, 2)), 0.2)
+    with pytest.raises(ValueError, match="u of shape"):
+        kf.unicycle(np.zeros(3), np.zeros((1, 2)), 0.2)
+    with pytest.raises(ValueError, match="u must be a 1-D vector"):
+        kf.unicycle_jacobian(np.zeros(3), np.zeros((1, 2)), 0.2)
