@@ -64,6 +64,7 @@ lint: $(STAMP)
 
 bench: $(STAMP)
 	$(BIN)/python benchmarks/bench_filters.py
+	$(BIN)/python benchmarks/bench_particle.py
 	$(BIN)/python benchmarks/bench_demos.py
 	$(BIN)/python benchmarks/bench_batch.py
 	$(BIN)/python benchmarks/bench_check.py
