@@ -71,6 +71,8 @@ def _step_with(
     for j, m in enumerate(landmarks):
         restart = linearize_at == "mu_bar only"  # every update starts again from the prediction
         at, P = (mu, Sig) if linearize_at == "current" else (mu_bar, Sig_bar if restart else Sig)
+        if linearize_at == "mu_bar, Sig_bar in S and K":  # the prediction's H, S and K, applied to the current belief
+            at, P = mu_bar, Sig_bar
         H, z_hat = models.range_bearing_jacobian(at, m), models.range_bearing(at, m)
         raw = z[j] - z_hat
         wrapped = np.array([raw[0], models.wrap_angle(raw[1])])
@@ -86,7 +88,7 @@ def _step_with(
         S = H @ P @ H.T + (Q if Q_in_update else 0)
         K = P @ H.T @ np.linalg.inv(S)
         mu = (mu_bar if restart else mu) + K @ nu
-        Sig = (np.eye(3) - K @ H) @ P
+        Sig = (np.eye(3) - K @ H) @ (Sig if linearize_at == "mu_bar, Sig_bar in S and K" else P)
         # (5) wrap the heading
         if wrap_heading:
             mu = np.array([mu[0], mu[1], models.wrap_angle(mu[2])])
@@ -236,6 +238,11 @@ def _variants() -> list[Variant]:
         ),
         Variant("stale_mean", with_(linearize_at="mu_bar"), current),
         Variant("stale_mean", with_(linearize_at="mu_bar only"), current + " Each update also starts from there."),
+        Variant(
+            "stale_mean",
+            with_(linearize_at="mu_bar, Sig_bar in S and K"),
+            current + " H, S and K of each reading come from the belief the previous reading left, not from μ̄, Σ̄.",
+        ),
         Variant(
             "bearing_not_wrapped",
             with_(wrap_gate=False, wrap_update=False),

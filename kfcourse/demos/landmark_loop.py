@@ -2,6 +2,8 @@
 
 from __future__ import annotations
 
+import html
+
 import ipywidgets as widgets
 import numpy as np
 
@@ -19,7 +21,7 @@ FILTERS = ("EKF", "UKF")  # the course's filters; the run takes them in lower ca
 YOURS = "yours"  # the choice that runs the student's own step
 IMAGE_WIDTH = 500  # CSS px at most: beside the column, within a laptop's 848 px; 1.2 times as tall as wide
 COLUMN_WIDTH = 340  # CSS px: the controls and the readout beside the picture
-BUTTONS = ["dropout", "kidnap", "new"]  # one row of the column: 120 + 100 + 100 px
+BUTTONS = ["dropout", "kidnap", "new"]  # one row of the column: 105 + 125 + 100 px
 GATE = 4.0  # the filter rejects a reading more than 4 standard deviations from its prediction (chapter 8)
 
 
@@ -154,15 +156,18 @@ def _readout(model: LoopModel) -> str:
     inside = "inside" if run.inside[k] else "<b>outside</b>"
     kidnapped = f"<br><b>kidnapped</b> at step {model.kidnap}" if model.kidnap is not None else ""
     nees, verdict = run.honesty()
-    failed = f"<b>Your filter failed</b>: {model.failure}. Shown: the course's EKF.<br>" if model.failure else ""
+    error = f"{run.error[k]:.3f}" if run.error[k] < 1e3 else f"{run.error[k]:.3g}"  # a student's step may fly off
+    nees_text = f"{nees:.2g}" if np.isfinite(nees) else "unbounded (a flat ellipse the truth left)"
+    failure = html.escape(model.failure or "")  # the student's own message, shown as text
+    failed = f"<b>Your filter failed</b>: {failure}. Shown: the course's EKF.<br>" if failure else ""
     return (
         f"<div style='font-size:13px;line-height:1.5'>{failed}step {k}, t = {run.t[k]:.1f} s, run {model.seed}: "
         f"{sight}{kidnapped}<br>"
-        f"<span style='color:{palette.ESTIMATE}'>position error {run.error[k]:.3f} m</span><br>"
+        f"<span style='color:{palette.ESTIMATE}'>position error {error} m</span><br>"
         f"1σ area: <span style='color:{palette.PREDICTION}'>{before:.3g}</span> before the readings → "
         f"<span style='color:{palette.ESTIMATE}'>{after:.3g} m²</span>{shrink}<br>"
         f"truth {inside} the 3σ ellipse ({model.share_inside():.0%} of steps so far)<br>"
-        f"this lap, the filter is <b>{verdict}</b>: mean NEES {nees:.2g} "
+        f"this lap, the filter is <b>{verdict}</b>: mean NEES {nees_text} "
         f"(honest: {HONEST_NEES[0]:g} to {HONEST_NEES[1]:g}, 2 on average)</div>"
     )
 
@@ -184,16 +189,16 @@ def _controls(model: LoopModel, kidnap: widgets.Button) -> dict:
     motion = slider(widgets.FloatLogSlider, "process noise ×", 1.0, lo, hi, 0.05, **log)
     sensor = slider(widgets.FloatLogSlider, "measurement noise ×", 1.0, lo, hi, 0.05, **log)
     R, Q = (slider(widgets.FloatLogSlider, f"filter's {x} ×", 1.0, tlo, thi, 0.1, **log) for x in "RQ")
-    for half in (R, Q):
-        half.layout.width = f"{COLUMN_WIDTH // 2 - 4}px"  # the filter's trust: two sliders share a row
+    for noise in (motion, sensor, R, Q):
+        noise.style.description_width = "145px"  # the four tracks line up
     dropout = widgets.ToggleButton(
         description="dropout",
         icon="eye-slash",
         tooltip="On: the sensor is blind from the step shown. Off: sight comes back at the step shown.",
-        layout=widgets.Layout(width="120px"),
+        layout=widgets.Layout(width="105px"),
     )
     new = button("New run", icon="refresh", tooltip="New noise: the next seed")
-    new.layout.width = kidnap.layout.width = "100px"
+    new.layout.width, kidnap.layout.width = "100px", "125px"  # room for "Undo kidnap"
     choice = widgets.ToggleButtons(
         options=[YOURS, *FILTERS] if model.step is not None else list(FILTERS),
         value=YOURS if model.filter == YOURS else model.filter.upper(),
@@ -228,7 +233,7 @@ def landmark_loop(seed: int = 0, filter=None) -> Demo:
     or by your own step ``filter(mu, Sig, u, z, landmarks, dt, M, Q, gate) -> (mu, Sig, used)``.
 
     Run animates the lap, the step slider scrubs it.  Two log sliders scale the world's
-    odometry and reading noise, two more the R and Q the filter assumes; *sensor dropout*
+    odometry and reading noise, two more the R and Q the filter assumes; *dropout*
     blinds the sensor from the step shown until it is pressed again; *Kidnap* carries the
     true robot half a lap on at the step shown; *New run* draws new noise.  A step
     function that fails is named in the readout, and the course's EKF is shown meanwhile.
@@ -251,7 +256,7 @@ def landmark_loop(seed: int = 0, filter=None) -> Demo:
         draw=lambda: _draw(view, model, readout, kidnap),
         frames=model.run.t.size,
         controls=_controls(model, kidnap),
-        beside=[["play", "frame"], "motion", "sensor", ["trust_motion", "trust_sensor"], BUTTONS, "filter", readout],
+        beside=[["play", "frame"], "motion", "sensor", "trust_motion", "trust_sensor", BUTTONS, "filter", readout],
         display_width=IMAGE_WIDTH,
     )
     demo.controls["frame"].layout.width = f"{COLUMN_WIDTH - 90}px"  # beside Run (90 px), in the column's width

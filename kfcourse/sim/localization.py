@@ -305,13 +305,29 @@ def _step_output(step, name, k, n_seen, *args):
     if not isinstance(out, tuple | list) or len(out) != 3:
         raise ValueError(f"{where} must return (mu, Sig, used), got {type(out).__name__}")
     try:
-        mu, Sig = v.vector(out[0], "mu", 3), v.covariance(out[1], "Sig", 3)
+        mu = v.vector(out[0], "mu", 3)
     except ValueError as err:
-        raise ValueError(f"{where} returned {err}") from None
+        raise ValueError(f"{where} returned {_briefly(err, out[0])}") from None
+    try:
+        Sig = v.covariance(out[1], "Sig", 3)
+    except ValueError as err:
+        raise ValueError(f"{where} returned {_briefly(err, out[1])}") from None
     used = np.asarray(out[2])
     if used.shape != (n_seen,) or not (used.dtype == bool or np.isin(used, (0, 1)).all()):
         raise ValueError(f"{where} must return used, one True or False per reading, shape ({n_seen},); got {out[2]!r}")
     return mu, Sig, used.astype(bool)
+
+
+def _briefly(err: ValueError, value) -> str:
+    """A long message about a returned array, with the array printed to 3 digits on one line."""
+    text = str(err)
+    if len(text) <= 100 or ", got " not in text:
+        return text
+    try:
+        shown = np.array2string(np.asarray(value, dtype=float), precision=3, separator=", ").replace("\n", "")
+    except (TypeError, ValueError):
+        return text[:100] + "..."
+    return f"{text.split(', got ')[0]}, got {' '.join(shown.split())}"
 
 
 def landmark_loop(
@@ -425,13 +441,25 @@ def landmark_loop(
     return _loop_run(world, track, filter=name, wrap_bearing=wrap_bearing, gate=gate, noise=noise)
 
 
+def _position_nees(err, Sxy) -> np.ndarray:
+    """The position NEES e^T Sig_xy^-1 e at every step (chapter 6).
+
+    A flat ellipse (a singular Sig_xy, which a step function may return) claims that the
+    error cannot leave its line, or its point: an error that does is infinitely unlikely,
+    and its NEES is infinite."""
+    inv = np.linalg.pinv(Sxy)
+    d2 = np.einsum("ti,tij,tj->t", err, inv, err)  # e^T Sig_xy^-1 e
+    off = np.linalg.norm(err - np.einsum("tij,tjk,tk->ti", Sxy, inv, err), axis=1)  # the part outside the ellipse
+    return np.where(off > 1e-9 * (1.0 + np.linalg.norm(err, axis=1)), np.inf, d2)
+
+
 def _loop_run(world: RobotRun, track: Track, *, filter, wrap_bearing, gate, noise) -> LoopRun:
     """The record of one lap: the world, the filter's track, and the truth measured against it.
 
     ``noise`` is (world's motion, world's sensor, filter's motion, filter's sensor) noise scales."""
     err = world.truth[:, :2] - track.mu[:, :2]
     Sxy = track.Sig[:, :2, :2]
-    d2 = np.einsum("ti,tij,tj->t", err, np.linalg.pinv(Sxy), err)  # e^T Sig_xy^-1 e
+    d2 = _position_nees(err, Sxy)
     return LoopRun(
         t=world.t,
         dt=world.dt,
@@ -449,7 +477,7 @@ def _loop_run(world: RobotRun, track: Track, *, filter, wrap_bearing, gate, nois
         Sig=track.Sig,
         error=np.linalg.norm(err, axis=1),
         inside=d2 <= 9.0,
-        area=np.pi * np.sqrt(np.linalg.det(Sxy)),
+        area=np.pi * np.sqrt(np.maximum(np.linalg.det(Sxy), 0.0)),  # det may round just below 0 when flat
         nees=d2,
         filter=filter,
         dropout=world.dropout,

@@ -128,10 +128,10 @@ def loop_controls(
     return np.array(lap * laps, dtype=float)
 
 
-def readings(truth, landmarks, sensor_range: float, range_std: float, bearing_std: float, eps):
+def readings(truth, landmarks, sensor_range: float, range_std: float, bearing_std: float, xi):
     r"""Noisy range-bearing readings of every landmark within range of each true pose.
 
-    :math:`z_{k,j} = h(x_k, m_j) + (\sigma_r \epsilon_{k,j,0},\, \sigma_\phi \epsilon_{k,j,1})`, bearing
+    :math:`z_{k,j} = h(x_k, m_j) + (\sigma_r \xi_{k,j,0},\, \sigma_\phi \xi_{k,j,1})`, bearing
     wrapped to :math:`(-\pi, \pi]`, kept where the true range is at most ``sensor_range``.
     Introduced in chapter 7.
 
@@ -142,7 +142,7 @@ def readings(truth, landmarks, sensor_range: float, range_std: float, bearing_st
     landmarks : ndarray, shape (L, 2)
     sensor_range, range_std, bearing_std : float
         Checked by the caller.
-    eps : ndarray, shape (T, L, 2)
+    xi : ndarray, shape (T, L, 2)
         Standard normal draws.
 
     Returns
@@ -155,7 +155,7 @@ def readings(truth, landmarks, sensor_range: float, range_std: float, bearing_st
     visible = np.zeros((len(truth), len(landmarks)), dtype=bool)
     for j, mj in enumerate(landmarks):
         h = range_bearing(truth, mj)  # (T, 2): [r, phi] from every true pose to landmark j
-        noisy = h + [range_std, bearing_std] * eps[:, j]  # z = h(x, m_j) + noise
+        noisy = h + [range_std, bearing_std] * xi[:, j]  # z = h(x, m_j) + noise
         noisy[:, 1] = wrap_angle(noisy[:, 1])
         visible[:, j] = h[:, 0] <= sensor_range
         z[visible[:, j], j] = noisy[visible[:, j]]
@@ -223,9 +223,9 @@ def simulate_robot(
     (the robot does exactly what it is told).  Odometry, the control the filter
     is told: :math:`\tilde u_k = u_k + (\sigma_V e_{k,0},\, \sigma_\omega e_{k,1})`.
     Readings, for every landmark :math:`m_j` within ``sensor_range`` of :math:`x_k`:
-    :math:`z_{k,j} = h(x_k, m_j) + (\sigma_r \epsilon_{k,j,0},\, \sigma_\phi \epsilon_{k,j,1})`,
+    :math:`z_{k,j} = h(x_k, m_j) + (\sigma_r \xi_{k,j,0},\, \sigma_\phi \xi_{k,j,1})`,
     bearing wrapped to :math:`(-\pi, \pi]`, with :func:`~kfcourse.models.range_bearing`.
-    All e and ε are independent standard normal draws.  A very noisy range can come
+    All e and ξ are independent standard normal draws.  A very noisy range can come
     out negative: the Gaussian model says so, and nothing is clipped.
 
     The draws depend only on ``seed``, the number of steps and the number of
@@ -303,11 +303,11 @@ def _drive(u, dt, start, m, sensor_range, stds, seed, laps, kidnap, dropout, one
     n_steps, n_marks = laps * len(u), len(m)
     rng = np.random.default_rng(seed)
     e = rng.standard_normal((n_steps, 2))  # odometry draws
-    eps = rng.standard_normal((n_steps, n_marks, 2))  # reading draws
+    xi = rng.standard_normal((n_steps, n_marks, 2))  # reading draws
 
     truth, u = true_path(u, dt, start, laps, kidnap)
     odometry = u + [stds["v_std"], stds["omega_std"]] * e  # u~_k = u_k + noise
-    z, visible = readings(truth, m, sensor_range, stds["range_std"], stds["bearing_std"], eps)
+    z, visible = readings(truth, m, sensor_range, stds["range_std"], stds["bearing_std"], xi)
     if dropout is not None:
         visible[dropout[0] : dropout[1]] = False  # the sensor is blind
         k = dropout[1]  # the first step with sight back

@@ -318,6 +318,28 @@ def localization_stale(*args):
     return _student_step(*args, stale=True)
 
 
+def localization_gain_from_prediction(mu, Sig, u, z, landmarks, dt, M, Q, gate):
+    """Linearizes every reading at the prediction (H, S and K from mu_bar, Sig_bar), but updates the current belief."""
+    W = kf.unicycle_control_jacobian(mu, u, dt)
+    G = kf.unicycle_jacobian(mu, u, dt)
+    mu_bar, Sig_bar = kf.unicycle(mu, u, dt), G @ Sig @ G.T + W @ M @ W.T
+    mu, Sig = mu_bar.copy(), Sig_bar.copy()
+    used = np.zeros(len(z), dtype=bool)
+    for j in range(len(z)):
+        H = kf.range_bearing_jacobian(mu_bar, landmarks[j])  # wrong: at mu_bar, not the current mean
+        nu = z[j] - kf.range_bearing(mu_bar, landmarks[j])
+        nu[1] = kf.wrap_angle(nu[1])
+        S = H @ Sig_bar @ H.T + Q  # wrong: Sig_bar, not the current Sig
+        if nu @ np.linalg.solve(S, nu) > gate**2:
+            continue
+        K = Sig_bar @ H.T @ np.linalg.inv(S)
+        mu = mu + K @ nu
+        mu[2] = kf.wrap_angle(mu[2])
+        Sig = (np.eye(3) - K @ H) @ Sig
+        used[j] = True
+    return mu, Sig, used
+
+
 def localization_R_is_M(*args):
     return _student_step(*args, R="M")
 

@@ -68,6 +68,7 @@ WRONG = [
     ("localization_step", a.localization_no_Q_in_update, "forgot_Q"),
     ("localization_step", a.localization_stale, "stale_mean"),
     ("localization_step", a.localization_restarts_from_prediction, "stale_mean"),
+    ("localization_step", a.localization_gain_from_prediction, "stale_mean"),
     ("localization_step", a.localization_R_is_M, "R_not_mapped"),
     ("localization_step", a.localization_ekf_predict_with_M, "R_not_mapped"),
     ("localization_step", a.localization_no_R, "forgot_R"),

@@ -11,6 +11,7 @@ import numpy as np
 import pytest
 
 import kfcourse as kf
+from kfcourse.check.localization import _variants
 from kfcourse.demos.landmark_loop import COLUMN_WIDTH, FIRST_FRAME, GATE, IMAGE_WIDTH, YOURS
 from kfcourse.filters.gaussian import ellipse_axes
 from kfcourse.plots.loop import position_errors, strip_limit
@@ -185,7 +186,7 @@ def test_the_column_fits_a_laptop():
         parts = row.children if hasattr(row, "children") and row.children else [row]
         widths = [int(str(w.layout.width).removesuffix("px")) for w in parts if w.layout.width]
         assert sum(widths) <= COLUMN_WIDTH, [w.description for w in parts]
-    assert len(column.children) == 7  # Run/step, two world sliders, the trust row, the buttons, filter, readout
+    assert len(column.children) == 8  # Run/step, two world sliders, two trust sliders, the buttons, filter, readout
 
 
 def picture_checks(demo, run, k, parts):
@@ -304,6 +305,20 @@ def two_outputs(mu, Sig, u, z, landmarks, dt, M, Q, gate):
     return reference_step(mu, Sig, u, z, landmarks, dt, M, Q, gate)[:2]
 
 
+def markup(mu, Sig, u, z, landmarks, dt, M, Q, gate):
+    return {}["<b>"]  # a KeyError whose message reads like HTML
+
+
+def lopsided(mu, Sig, u, z, landmarks, dt, M, Q, gate):
+    mu, Sig, used = reference_step(mu, Sig, u, z, landmarks, dt, M, Q, gate)
+    return mu, Sig + np.triu(np.full((3, 3), 0.01), 1), used
+
+
+def square_mean(mu, Sig, u, z, landmarks, dt, M, Q, gate):
+    mu, Sig, used = reference_step(mu, Sig, u, z, landmarks, dt, M, Q, gate)
+    return np.diag(mu), Sig, used
+
+
 @pytest.mark.parametrize(
     ("step", "said"),
     [
@@ -312,6 +327,9 @@ def two_outputs(mu, Sig, u, z, landmarks, dt, M, Q, gate):
         (flat_mean, "flat_mean at step 0 (0 readings) returned mu must"),
         (negative_covariance, "negative_covariance at step 0 (2 readings) returned Sig must be positive semi-definite"),
         (two_outputs, "two_outputs at step 0 (0 readings) must return (mu, Sig, used)"),
+        (markup, "markup at step 0 (0 readings) raised KeyError: &#x27;&lt;b&gt;&#x27;"),  # shown as text
+        (lopsided, "lopsided at step 0 (0 readings) returned Sig must be a symmetric covariance matrix, got [["),
+        (square_mean, "square_mean at step 0 (0 readings) returned mu must be a 1-D vector, got shape (3, 3)"),
     ],
 )
 def test_a_broken_step_is_named_in_the_readout_never_raised(step, said):
@@ -325,6 +343,35 @@ def test_a_broken_step_is_named_in_the_readout_never_raised(step, said):
     assert "Your filter failed" in readout(demo)
     demo.controls["filter"].value = "EKF"
     assert "Your filter failed" not in readout(demo) and m.failure is None
+
+
+def test_a_flat_ellipse_reads_as_unboundedly_over_confident():
+    def certain(mu, Sig, u, z, landmarks, dt, M, Q, gate):
+        mu, _, used = reference_step(mu, Sig, u, z, landmarks, dt, M, Q, gate)
+        return mu, np.zeros((3, 3)), used
+
+    text = readout(make(filter=certain))
+    assert "<b>over-confident</b>: mean NEES unbounded" in text and "truth <b>outside</b>" in text
+    assert "nan" not in text.lower() and "inf" not in text.lower()
+
+
+@pytest.mark.parametrize("variant", _variants(), ids=lambda v: v.mistake)
+def test_every_mistake_the_checker_knows_drives_the_demo_or_is_named(variant):
+    """The usual wrong steps of chapter 10's exercise, handed to the demo: it runs them or says how they
+    broke, never raises, and its readout stays finite at every setting a prompt uses."""
+
+    def my_step(mu, Sig, u, z, landmarks, dt, M, Q, gate):
+        return variant.fn(mu, Sig, u, z, landmarks, dt, M, Q, gate)
+
+    demo = make(filter=my_step)
+    for key, value in (("motion", 10.0), ("sensor", 10.0), ("sensor", 0.1), ("trust_sensor", 0.01)):
+        demo.controls[key].value = value
+        for k in (0, 90, demo.controls["frame"].max):
+            demo.controls["frame"].value = k
+            text = readout(demo)
+            assert demo.model.failure is None or "Your filter failed" in text
+            shown = text.split("Shown: the course's EKF.")[-1].lower()  # the run on the picture
+            assert "nan" not in shown and "inf" not in shown
 
 
 def test_the_demo_widgets_are_found():

@@ -8,7 +8,7 @@ import numpy as np
 import pytest
 
 import kfcourse as kf
-from kfcourse.sim.localization import SIG0
+from kfcourse.sim.localization import SIG0, _position_nees
 
 
 @pytest.fixture(scope="module")
@@ -266,6 +266,25 @@ def test_a_broken_step_function_gets_a_value_error_naming_it_and_the_step(kind, 
     with pytest.raises(ValueError, match=rf"^the filter my_{kind} at step 0 \(\d readings?\) .*") as err:
         kf.sim.landmark_loop(0, filter=broken(kind))
     assert said in str(err.value)
+
+
+def test_a_long_message_prints_the_returned_array_briefly():
+    with pytest.raises(ValueError, match=r"returned Sig must be a symmetric covariance matrix, got \[\[") as err:
+        kf.sim.landmark_loop(0, filter=broken("asym"))
+    assert len(str(err.value)) < 250 and "\n" not in str(err.value)  # 3 digits a number, on one line
+
+
+def test_a_flat_ellipse_the_truth_leaves_is_infinitely_unlikely():
+    def flat(mu, Sig, u, z, landmarks, dt, M, Q, gate):
+        mu, _, used = chapter_step(mu, Sig, u, z, landmarks, dt, M, Q, gate)
+        return mu, np.zeros((3, 3)), used  # "I know exactly where I am"
+
+    run = kf.sim.landmark_loop(0, filter=flat)
+    assert np.isinf(run.nees).all() and not run.inside.any() and (run.area == 0).all()
+    assert run.honesty()[1] == "over-confident"
+    line = np.array([[[1.0, 0.0], [0.0, 0.0]]] * 2)  # an ellipse flattened onto the x axis
+    nees = _position_nees(np.array([[0.5, 0.0], [0.5, 1e-3]]), line)
+    assert nees[0] == pytest.approx(0.25) and np.isinf(nees[1])  # along its line, and off it
 
 
 def test_a_step_function_wraps_as_written():
