@@ -26,6 +26,7 @@ from .localization import (
     loop_world,
     process_noise_of_odometry,
 )
+from .particle import ParticleRun, particle_loop
 from .robot import DEFAULT_LANDMARKS, RobotRun, loop_controls, readings, simulate_robot
 from .target import (
     TargetEstimates,
@@ -50,6 +51,7 @@ __all__ = [
     "HallwayRun",
     "LineRun",
     "LoopRun",
+    "ParticleRun",
     "RobotRun",
     "TargetEstimates",
     "TargetRun",
@@ -76,6 +78,7 @@ __all__ = [
     "move",
     "nees",
     "nees_band",
+    "particle_loop",
     "process_noise",
     "process_noise_of_odometry",
     "read_door",

@@ -1,0 +1,262 @@
+r"""The particle filter on the capstone's loop: chapter 10's world, a cloud of weighted poses (chapter 11).
+
+:func:`particle_loop` drives the robot of :func:`~kfcourse.sim.loop_world` round the map, draw for
+draw the world of chapter 10's EKF and UKF for the same seed, and follows it with the steps of
+:mod:`kfcourse.filters.particle`.  One step, with the chapter's equation numbers:
+
+- predict: every particle moves with its own noisy copy of the odometry, (1)-(2);
+- weight: by the likelihood of every reading in view, in log space, (3); no gate: a reading
+  far from what the cloud expects drags no estimate through a gain, it only re-weighs the
+  particles, and after a kidnap it is the reading that finds the robot;
+- normalise (4), and the effective sample size (5);
+- resample (6) when :math:`N_{\text{eff}} < N/2`;
+- injection (8), when asked for, just after resampling;
+- the estimate (7), from the weighted cloud before resampling.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+
+import numpy as np
+
+from .. import _validate as v
+from ..filters.particle import (
+    effective_sample_size,
+    inject_random,
+    normalise,
+    pf_estimate,
+    pf_predict,
+    pf_weight,
+    resample_multinomial,
+    resample_stratified,
+    resample_systematic,
+)
+from .localization import BEARING_STD, OMEGA_STD, RANGE_STD, SIG0, V_STD, _noise_scale, _position_nees, loop_world
+from .records import Record
+
+RESAMPLERS = {
+    "multinomial": resample_multinomial,
+    "stratified": resample_stratified,
+    "systematic": resample_systematic,
+}
+MAX_PARTICLES = 10_000  # the cloud of every step is kept: 10 000 particles for a lap is about 20 MB
+LOCALIZED = 0.5  # m: a run is localized when its error stays under this over the last quarter lap
+ALPHA_SLOW, ALPHA_FAST = 0.001, 0.1  # augmented MCL: how fast its long- and short-term averages follow
+PF_STREAM = 11  # the filter's own draws come from default_rng([seed, PF_STREAM]), apart from the world's
+
+
+@dataclass(frozen=True)
+class ParticleRun(Record):
+    """One drive round the loop and the particle filter that followed it; one row per step ``k = 0 .. T-1``.
+
+    Step ``k``: the particles move with ``odometry[k]``, are weighed by the readings
+    ``z[k, visible[k]]`` (``particles[k]``, ``w[k]``), give the estimate ``mu[k]``, ``Sig[k]``,
+    and are then resampled if ``resampled[k]`` (and ``injected[k]`` of them replaced).
+    """
+
+    t: np.ndarray  #: (T,) time after each step (s)
+    dt: float  #: time step (s)
+    truth: np.ndarray  #: (T, 3) true pose [x, y, theta] after each step
+    odometry: np.ndarray  #: (T, 2) the controls [V, omega] the filter is told
+    landmarks: np.ndarray  #: (L, 2) the map (m)
+    z: np.ndarray  #: (T, L, 2) readings [r, phi]; zeros where not visible
+    visible: np.ndarray  #: (T, L) bool: the readings of step k, every one of them used
+    start: np.ndarray  #: (3,) the true pose before the first step
+    bounds: np.ndarray | None  #: (2, 2) [[x_min, x_max], [y_min, y_max]]: the map's box (global start, injection)
+    particles: np.ndarray  #: (T, N, 3) float32: the cloud after the prediction of step k, as it was weighed
+    w: np.ndarray  #: (T, N) float32: its normalised weights, before resampling
+    ess: np.ndarray  #: (T,) effective sample size of w[k], from 1 to N
+    resampled: np.ndarray  #: (T,) bool: the cloud was resampled after step k (ess[k] < N/2)
+    injected: np.ndarray  #: (T,) how many particles were replaced by random poses after step k
+    mu: np.ndarray  #: (T, 3) the cloud's weighted mean after step k
+    Sig: np.ndarray  #: (T, 3, 3) its weighted covariance
+    error: np.ndarray  #: (T,) distance between the estimated and the true position (m)
+    inside: np.ndarray  #: (T,) bool: the true position lies inside the 3-sigma position ellipse
+    nees: np.ndarray  #: (T,) position NEES e^T Sig_xy^-1 e
+    n_particles: int  #: N
+    resample: str  #: "multinomial", "stratified" or "systematic"
+    global_start: bool  #: the cloud started uniform over the map's box and every heading
+    kidnap: int | None  #: step at which the true robot was carried half a lap further on
+    injection: float | str  #: share of the particles replaced after each resampling, or "augmented"
+    dropout: tuple[int, int] | None  #: the sensor is blind for steps t0 <= k < t1
+    motion_noise: float  #: scale of the odometry noise (the world's, and the filter's M)
+    sensor_noise: float  #: scale of the reading noise (the world's, and the filter's Q)
+    laps: int  #: times round the loop
+    seed: int
+
+    @property
+    def share_inside(self) -> float:
+        """Share of the steps with the truth inside the 3-sigma ellipse (0 to 1)."""
+        return float(self.inside.mean())
+
+    def localized(self, bound: float = LOCALIZED) -> bool:
+        """Whether the error stays under ``bound`` (m) at every step of the last quarter lap."""
+        quarter = len(self.t) // self.laps // 4
+        return bool((self.error[-quarter:] < bound).all())
+
+
+def _map_box(landmarks: np.ndarray) -> np.ndarray | None:
+    """The map's bounding box [[x_min, x_max], [y_min, y_max]], where a lost robot may be; None if it has no area."""
+    if len(landmarks) == 0:
+        return None
+    box = np.stack([landmarks.min(axis=0), landmarks.max(axis=0)], axis=1)
+    return box if (box[:, 0] < box[:, 1]).all() else None
+
+
+def particle_loop(
+    seed: int = 0,
+    *,
+    n_particles: int = 2000,
+    resample: str = "systematic",
+    global_start: bool = False,
+    kidnap: int | None = None,
+    injection: float | str = 0.0,
+    dropout=None,
+    motion_noise: float = 1.0,
+    sensor_noise: float = 1.0,
+    laps: int = 1,
+    landmarks=None,
+    sensor_range: float = 4.0,
+) -> ParticleRun:
+    r"""Drive the loop of chapter 10 and follow the robot with a particle filter.
+
+    The world is :func:`~kfcourse.sim.loop_world`'s for this seed, draw for draw: the truth,
+    the odometry and the readings are those :func:`~kfcourse.sim.landmark_loop` gives the EKF
+    and the UKF.  The filter's own draws (the start, the prediction's noise, resampling and
+    injection) come from a second generator, ``np.random.default_rng([seed, PF_STREAM])``, so
+    they leave the world's untouched.  The filter's M and Q are the world's noise.
+
+    Each step (equations (1)-(8) of :mod:`kfcourse.filters.particle`): predict every particle
+    with the odometry, weigh it by all the readings in view, normalise, estimate the mean and
+    covariance of the weighted cloud, then resample if :math:`N_{\text{eff}} < N/2` and, after
+    resampling, replace ``injection`` of the particles by random poses.  Resampling only when
+    the weights are uneven: when they are nearly equal, resampling would only copy some
+    particles and drop others at random, and lose variety for nothing.
+
+    Introduced in chapter 11.
+
+    Parameters
+    ----------
+    seed : int
+        Seed of the world's noise and of the filter's draws (>= 0).
+    n_particles : int
+        N, from 1 to :data:`MAX_PARTICLES`.
+    resample : {"multinomial", "stratified", "systematic"}
+        The resampling scheme.
+    global_start : bool
+        False: the cloud starts at the true start, spread by :data:`~kfcourse.sim.localization.SIG0`
+        (as the EKF of chapter 10).  True: the start is unknown, and the cloud starts uniform over
+        the map's bounding box and every heading.
+    kidnap : int, optional
+        At this step the true robot is carried half a lap further on; the filter is not told.
+    injection : float or "augmented"
+        Share of the particles replaced by poses uniform over the map's box after each
+        resampling, from 0 to 1; or ``"augmented"``, Thrun's augmented MCL: the share is
+        :math:`\max(0, 1 - w_{\text{fast}} / w_{\text{slow}})`, where :math:`w_{\text{slow}}` and
+        :math:`w_{\text{fast}}` follow the readings' average likelihood
+        :math:`\sum_i w^{[i]} p(z \mid x^{[i]})` (per reading, so that one landmark more in view
+        changes nothing) at the rates :data:`ALPHA_SLOW` and :data:`ALPHA_FAST`.  It injects
+        when the readings suddenly fit the cloud worse than they used to: when the robot may be lost.
+    dropout : (int, int), optional
+        The sensor is blind for the steps ``t0 <= k < t1``.
+    motion_noise, sensor_noise : float
+        Scale of the odometry noise (0.1 m/s, 0.05 rad/s at 1) and the reading noise (0.1 m,
+        0.03 rad at 1), from 0.01 to 100; the world's and the filter's alike.
+    laps : int
+        Times round the loop (>= 1).
+    landmarks : array_like, shape (L, 2), optional
+        The map (m); by default :data:`~kfcourse.sim.DEFAULT_LANDMARKS`.
+    sensor_range : float
+        Largest range at which a landmark is seen (m), > 0.
+
+    Returns
+    -------
+    ParticleRun
+    """
+    seed = v.whole(seed, "seed", 0)
+    N = v.whole(n_particles, "n_particles", 1)
+    if N > MAX_PARTICLES:
+        raise ValueError(f"n_particles must be a whole number from 1 to {MAX_PARTICLES}, got {N}")
+    if not isinstance(resample, str) or resample not in RESAMPLERS:
+        raise ValueError(f"resample must be one of {tuple(RESAMPLERS)}, got {resample!r}")
+    global_start = v.flag(global_start, "global_start")
+    augmented = isinstance(injection, str) and injection == "augmented"
+    if isinstance(injection, bool | np.bool_) or (isinstance(injection, str) and not augmented):
+        raise ValueError(f"injection must be a share from 0 to 1 or 'augmented', got {injection!r}")
+    injection = injection if augmented else v.probability(injection, "injection")
+    motion_noise = _noise_scale(motion_noise, "motion_noise")
+    sensor_noise = _noise_scale(sensor_noise, "sensor_noise")
+    drive = {"sensor_range": sensor_range, "laps": laps, "kidnap": kidnap, "dropout": dropout}
+    world = loop_world(seed, motion_noise, sensor_noise, landmarks, **drive)
+    box = _map_box(world.landmarks)
+    if box is None and (global_start or augmented or injection > 0):
+        raise ValueError("landmarks must span a box of some width and height for a global start or injection")
+    M = np.diag([motion_noise * V_STD, motion_noise * OMEGA_STD]) ** 2  # the odometry noise
+    Q = np.diag([sensor_noise * RANGE_STD, sensor_noise * BEARING_STD]) ** 2  # the reading noise
+    rng = np.random.default_rng([seed, PF_STREAM])
+
+    T = len(world.t)
+    if global_start:  # the start unknown: anywhere in the map's box, any heading
+        x = inject_random(np.zeros((N, 3)), 1.0, box, rng)
+    else:  # the start known, as chapter 10's filters know it
+        x = world.start + rng.multivariate_normal(np.zeros(3), SIG0, size=N)
+    cloud, weights = np.empty((T, N, 3), dtype=np.float32), np.empty((T, N), dtype=np.float32)
+    ess, resampled, injected = np.empty(T), np.zeros(T, dtype=bool), np.zeros(T, dtype=int)
+    mu, Sig = np.empty((T, 3)), np.empty((T, 3, 3))
+    log_w = np.zeros(N)  # log-weights carried from step to step: all equal after resampling
+    w_slow = w_fast = None  # augmented MCL: long- and short-term averages of how well the readings fit
+    for k in range(T):
+        x = pf_predict(x, world.odometry[k], world.dt, M, rng)  # (1)-(2)
+        seen, before = world.visible[k], log_w
+        log_w = pf_weight(x, world.z[k, seen], world.landmarks[seen], Q, log_w)  # (3)
+        if augmented and seen.any():  # the readings' average likelihood sum_i w_i p(z | x_i), per reading
+            fit = np.exp((np.logaddexp.reduce(log_w) - np.logaddexp.reduce(before)) / seen.sum())
+            w_slow = fit if w_slow is None else w_slow + ALPHA_SLOW * (fit - w_slow)
+            w_fast = fit if w_fast is None else w_fast + ALPHA_FAST * (fit - w_fast)
+        w = normalise(log_w)  # (4)
+        cloud[k], weights[k], ess[k] = x, w, effective_sample_size(w)  # (5)
+        mu[k], Sig[k] = pf_estimate(x, w)  # (7)
+        if ess[k] < N / 2:
+            x, log_w, resampled[k] = x[RESAMPLERS[resample](w, rng)], np.zeros(N), True  # (6): every weight 1/N
+            share = injection
+            if augmented:  # the readings fit worse lately than in the long run: the robot may be lost
+                share = min(1.0, max(0.0, 1.0 - w_fast / w_slow)) if w_slow else 0.0
+            if share > 0:
+                x, injected[k] = inject_random(x, share, box, rng), round(share * N)  # (8)
+        else:
+            log_w = log_w - log_w.max()  # keep the weights (the largest as 0, so the sum never drifts off)
+
+    err = world.truth[:, :2] - mu[:, :2]
+    nees = _position_nees(err, Sig[:, :2, :2])
+    return ParticleRun(
+        t=world.t,
+        dt=world.dt,
+        truth=world.truth,
+        odometry=world.odometry,
+        landmarks=world.landmarks,
+        z=world.z,
+        visible=world.visible,
+        start=world.start,
+        bounds=box,
+        particles=cloud,
+        w=weights,
+        ess=ess,
+        resampled=resampled,
+        injected=injected,
+        mu=mu,
+        Sig=Sig,
+        error=np.linalg.norm(err, axis=1),
+        inside=nees <= 9.0,
+        nees=nees,
+        n_particles=N,
+        resample=resample,
+        global_start=global_start,
+        kidnap=world.kidnap,
+        injection=injection,
+        dropout=world.dropout,
+        motion_noise=motion_noise,
+        sensor_noise=sensor_noise,
+        laps=int(laps),
+        seed=seed,
+    )
