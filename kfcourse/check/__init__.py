@@ -23,6 +23,7 @@ from .exercises import affine_gaussian, cv_model, drift_sigma
 from .kalman import fuse, kf_1d_step, kf_step
 from .localization import localization_step
 from .nonlinear import range_bearing, range_bearing_jacobian, unicycle
+from .particle import resample_systematic
 from .ukf import sigma_points, unscented_transform
 
 __all__ = [
@@ -39,6 +40,7 @@ __all__ = [
     "localization_step",
     "range_bearing",
     "range_bearing_jacobian",
+    "resample_systematic",
     "sigma_points",
     "unicycle",
     "unscented_transform",

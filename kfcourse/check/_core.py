@@ -101,6 +101,20 @@ MISTAKES = {
     "used_wrong": "the used flags do not say which readings were used",
     "no_predict_when_blind": "the prediction is skipped when no reading is in view",
     "deviations_from_f_mu": "the covariance takes deviations from f(μ) instead of from the mean μ_y",
+    # chapter 11
+    "offset_not_divided": "the offset U ~ U[0, 1) is not divided by N, so the positions run past 1",
+    "no_offset": "the positions have no random offset (or one too small to matter): i/N instead of (i + U)/N",
+    "fixed_offset": "the offset is fixed at ½ instead of drawn: positions (i + ½)/N",
+    "multinomial": "N independent positions are drawn (multinomial resampling), not N evenly spaced ones",
+    "unnormalised_weights": "the weights are taken as normalised: the cumulative sum ends at their sum, not at 1",
+    "cumsum_not_one": "the cumulative sum does not end at exactly 1, so an index runs past the end",
+    "boundary_side": "a position exactly on a slice boundary c_i goes to particle i instead of i + 1",
+    "weights_not_indices": "weights are returned where the indices of the particles drawn belong",
+    "counts_not_indices": "how often each particle is drawn is returned where the indices belong",
+    "weights_not_reset": "the particles drawn keep their old weights instead of 1/N",
+    "weights_returned_too": "the new weights are returned beside the indices",
+    "float_indices": "the indices are floats, and particles[indices] needs integers",
+    "ignores_rng": "the random draws do not come from the rng given, so the same rng gives other particles",
 }
 
 
