@@ -66,6 +66,7 @@ bench: $(STAMP)
 	$(BIN)/python benchmarks/bench_filters.py
 	$(BIN)/python benchmarks/bench_particle.py
 	$(BIN)/python benchmarks/bench_demos.py
+	$(BIN)/python benchmarks/bench_pictures.py
 	$(BIN)/python benchmarks/bench_batch.py
 	$(BIN)/python benchmarks/bench_check.py
 	$(BIN)/python -m benchmarks.bench_link
