@@ -98,3 +98,19 @@ def test_the_notation_table_is_prose_and_every_chapter_links_it():
         _, cs = cells(path)
         text = "\n".join("".join(c["source"]) for c in cs if c["cell_type"] == "markdown")
         assert re.search(r"\]\(\s*notation\.ipynb\s*\)", text), f"{path.name} does not link the notation table"
+
+
+MAX_CODE_LINES = 15  # a longer answer lets its run record print the table (kfcourse.sim.records.text_table)
+
+
+@pytest.mark.parametrize("path", [p for p in NOTEBOOKS if p.name not in EXTRA], ids=lambda p: p.stem)
+def test_no_code_cell_of_a_chapter_is_over_15_lines(path):
+    """A chapter shows short calls; a loop that prints a table belongs in the package."""
+    _, cs = cells(path)
+    too_long = []
+    for index, c in enumerate(cs):
+        lines = "".join(c["source"]).splitlines()
+        if c["cell_type"] == "code" and len(lines) > MAX_CODE_LINES:
+            first = next((line for line in lines if line != MARK), "")
+            too_long.append(f"cell {index} ({len(lines)} lines): {first!r}")
+    assert not too_long, f"{path.name}: code cells over {MAX_CODE_LINES} lines:\n" + "\n".join(too_long)

@@ -26,6 +26,7 @@ from .localization import (
     loop_world,
     process_noise_of_odometry,
 )
+from .outlier import OutlierRun, plain_and_gated
 from .particle import ParticleRun, particle_loop
 from .robot import DEFAULT_LANDMARKS, RobotRun, loop_controls, readings, simulate_robot
 from .target import (
@@ -51,6 +52,7 @@ __all__ = [
     "HallwayRun",
     "LineRun",
     "LoopRun",
+    "OutlierRun",
     "ParticleRun",
     "RobotRun",
     "TargetEstimates",
@@ -79,6 +81,7 @@ __all__ = [
     "nees",
     "nees_band",
     "particle_loop",
+    "plain_and_gated",
     "process_noise",
     "process_noise_of_odometry",
     "read_door",
