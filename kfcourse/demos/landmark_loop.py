@@ -121,11 +121,6 @@ class LoopModel:
         self.seed += 1
         self._rerun()
 
-    @property
-    def dropout(self) -> bool:
-        """True if a blind stretch is set (the sensor is blind somewhere in the lap)."""
-        return self.blind is not None
-
     def is_blind(self) -> bool:
         """True if the sensor is blind at the step shown."""
         return self.blind is not None and self.blind[0] <= self.frame < self.blind[1]
