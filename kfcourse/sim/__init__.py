@@ -4,6 +4,7 @@ time), or is a pure function of its inputs and a seeded generator."""
 from .association import AssociationScan, GatedUpdate, association_scan, gated_update
 from .drift import bias_drift, drift_sigma, monte_carlo_drift
 from .ekf_runs import TWO_LANDMARKS, EkfRun, flipped_bearing_jacobian, run_ekf
+from .family import FamilyTable, FilterScore, family_table
 from .hallway import (
     HallwayRun,
     door_likelihood,
@@ -48,6 +49,8 @@ __all__ = [
     "TWO_LANDMARKS",
     "AssociationScan",
     "EkfRun",
+    "FamilyTable",
+    "FilterScore",
     "GatedUpdate",
     "HallwayRun",
     "LineRun",
@@ -63,6 +66,7 @@ __all__ = [
     "bias_drift",
     "door_likelihood",
     "drift_sigma",
+    "family_table",
     "filter_target",
     "filter_tracks",
     "flipped_bearing_jacobian",

@@ -446,10 +446,13 @@ def _position_nees(err, Sxy) -> np.ndarray:
 
     A flat ellipse (a singular Sig_xy, which a step function may return) claims that the
     error cannot leave its line, or its point: an error that does is infinitely unlikely,
-    and its NEES is infinite."""
-    inv = np.linalg.pinv(Sxy)
-    d2 = np.einsum("ti,tij,tj->t", err, inv, err)  # e^T Sig_xy^-1 e
-    off = np.linalg.norm(err - np.einsum("tij,tjk,tk->ti", Sxy, inv, err), axis=1)  # the part outside the ellipse
+    and its NEES is infinite.  So is the NEES of an ellipse so small that its inverse overflows
+    (a particle cloud collapsed onto one particle)."""
+    with np.errstate(over="ignore", invalid="ignore"):  # overflow and inf * 0 below mean: infinitely unlikely
+        inv = np.linalg.pinv(Sxy)
+        d2 = np.einsum("ti,tij,tj->t", err, inv, err)  # e^T Sig_xy^-1 e
+        off = np.linalg.norm(err - np.einsum("tij,tjk,tk->ti", Sxy, inv, err), axis=1)  # the part outside the ellipse
+    d2 = np.where(np.isnan(d2), np.inf, d2)
     return np.where(off > 1e-9 * (1.0 + np.linalg.norm(err, axis=1)), np.inf, d2)
 
 

@@ -3,6 +3,7 @@
 from __future__ import annotations
 
 import re
+import warnings
 
 import numpy as np
 import pytest
@@ -290,3 +291,14 @@ def test_a_flat_ellipse_the_truth_leaves_is_infinitely_unlikely():
 def test_a_step_function_wraps_as_written():
     with pytest.raises(ValueError, match=r"^wrap_bearing=False"):
         kf.sim.landmark_loop(0, filter=chapter_step, wrap_bearing=False)
+
+
+def test_an_ellipse_too_small_to_invert_has_an_infinite_nees_without_a_warning():
+    """A particle cloud collapsed onto one particle has a subnormal covariance: its inverse overflows."""
+
+    err = np.array([[0.1, -0.2], [0.0, 0.0]])
+    Sxy = np.array([np.eye(2) * 1e-320, np.eye(2)])
+    with warnings.catch_warnings():
+        warnings.simplefilter("error")
+        nees = _position_nees(err, Sxy)
+    assert nees[0] == np.inf and nees[1] == 0.0
