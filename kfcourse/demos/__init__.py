@@ -7,6 +7,8 @@ from .hallway import hallway
 from .landmark_loop import landmark_loop
 from .linearization import linearization
 from .nees import nees_panel
+from .particle_cloud import particle_cloud
+from .particle_hallway import particle_hallway
 from .raw_vs_filtered import raw_vs_filtered
 from .sigma_points import sigma_points
 from .step_through import step_through
@@ -20,6 +22,8 @@ __all__ = [
     "landmark_loop",
     "linearization",
     "nees_panel",
+    "particle_cloud",
+    "particle_hallway",
     "raw_vs_filtered",
     "sigma_points",
     "step_through",

@@ -83,7 +83,7 @@ def hallway_view(doors) -> HallwayView:
     clear = {"facecolor": "white", "edgecolor": "none", "alpha": 0.85, "pad": 1.0}  # over the grid lines
     style = {"transform": ax.transAxes, "ha": "left", "va": "top", "fontsize": 9, "color": palette.INK, "bbox": clear}
     setup = ax.text(0.01, 0.97, "", **style)
-    end_walls, robot = _hallway_map(ax_map, doors)
+    end_walls, robot = hallway_map(ax_map, doors)
     ax_lik.set_ylim(0, 1.05)
     ax_lik.set_ylabel("p(z | x)")
     ax_lik.set_xlabel("cell   (brown: doors on the left and right wall; grey arrow: the true robot)")
@@ -92,7 +92,7 @@ def hallway_view(doors) -> HallwayView:
     return HallwayView(fig, ax, ax_map, ax_lik, status, setup, bars, robot, end_walls, likelihood)
 
 
-def _hallway_map(ax_map: Axes, doors: np.ndarray) -> tuple[tuple[Line2D, Line2D], Line2D]:
+def hallway_map(ax_map: Axes, doors: np.ndarray) -> tuple[tuple[Line2D, Line2D], Line2D]:
     """The hallway's map: the upper wall is on the robot's left (it drives right), the lower wall on its right.
 
     Returns

@@ -29,6 +29,7 @@ from .localization import (
 )
 from .outlier import OutlierRun, plain_and_gated
 from .particle import ParticleRun, particle_loop
+from .particle_hallway import ParticleHallwayRun, simulate_particle_hallway
 from .robot import DEFAULT_LANDMARKS, RobotRun, loop_controls, readings, simulate_robot
 from .target import (
     TargetEstimates,
@@ -56,6 +57,7 @@ __all__ = [
     "LineRun",
     "LoopRun",
     "OutlierRun",
+    "ParticleHallwayRun",
     "ParticleRun",
     "RobotRun",
     "TargetEstimates",
@@ -93,6 +95,7 @@ __all__ = [
     "run_ekf",
     "simulate_hallway",
     "simulate_line",
+    "simulate_particle_hallway",
     "simulate_robot",
     "simulate_target",
     "simulate_tracks",

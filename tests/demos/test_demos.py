@@ -25,6 +25,8 @@ BUTTON_DEMOS = [
     "hallway",
     "landmark_loop",
     "nees_panel",
+    "particle_cloud",
+    "particle_hallway",
     "raw_vs_filtered",
     "step_through",
     "tracker",

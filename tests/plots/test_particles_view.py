@@ -1,0 +1,82 @@
+"""The particle-cloud picture (chapter 11): the cloud, the estimate, the truth and the ESS strip show the
+run at the step asked for, in place, and a new run (a kidnap) moves them without a new figure."""
+
+from __future__ import annotations
+
+from types import SimpleNamespace
+
+import numpy as np
+import pytest
+
+import kfcourse as kf
+from kfcourse.filters.gaussian import ellipse_axes
+from kfcourse.plots.particles import RESAMPLE_LINE, cloud_view, update_cloud_view, weight_shades
+
+
+@pytest.fixture(scope="module")
+def run():
+    return kf.sim.particle_loop(0, n_particles=500)
+
+
+def test_weight_shades_put_the_heaviest_on_top():
+    order, shade = weight_shades([0.1, 0.6, 0.3])
+    assert order.tolist() == [0, 2, 1]
+    np.testing.assert_allclose(shade, [1 / 6, 0.5, 1.0])
+    order, shade = weight_shades(np.full(4, 0.25))  # after resampling: every particle as heavy
+    assert order.tolist() == [0, 1, 2, 3] and (shade == 1.0).all()
+
+
+@pytest.mark.parametrize("k", [0, 60, 121])
+def test_the_picture_shows_the_step(run, k):
+    model = SimpleNamespace(run=run, frame=k)
+    view = cloud_view(model)
+    order, shade = weight_shades(run.w[k])
+    np.testing.assert_allclose(view.cloud.get_offsets(), run.particles[k, order, :2])
+    np.testing.assert_allclose(view.cloud.get_array(), shade)
+    assert view.cloud.get_array().max() == 1.0 and view.cloud.get_array().min() >= 0.0
+    np.testing.assert_allclose(view.ring.get_center(), run.mu[k, :2])
+    w, h, _ = ellipse_axes(run.Sig[k, :2, :2], 2.0)
+    assert (view.ring.get_width(), view.ring.get_height()) == pytest.approx((w, h))
+    np.testing.assert_allclose(view.robot.get_xy()[:3].mean(axis=0), run.mu[k, :2], atol=1e-9)
+    np.testing.assert_allclose(view.truth_robot.get_xy()[:3].mean(axis=0), run.truth[k, :2], atol=1e-9)
+    assert len(view.beams.get_segments()) == run.visible[k].sum()
+    for segment, m in zip(view.beams.get_segments(), run.landmarks[run.visible[k]], strict=True):
+        np.testing.assert_allclose(segment, [run.mu[k, :2], m])
+    np.testing.assert_allclose(view.trail.get_xydata(), run.mu[: k + 1, :2])
+    share = run.ess / run.n_particles
+    np.testing.assert_allclose(view.past.get_xydata(), np.column_stack([run.t, share])[: k + 1])
+    np.testing.assert_allclose(view.future.get_xydata(), np.column_stack([run.t, share])[k:])
+    assert view.cursor.get_xdata()[0] == run.t[k]
+    assert not view.kidnap.get_visible() and view.note.get_text() == ""
+    assert len(view.truth_before.get_xydata()) == run.t.size and len(view.truth_after.get_xydata()) == 0
+    assert RESAMPLE_LINE == 0.5
+
+
+def test_a_kidnap_splits_the_truth_and_marks_the_strip(run):
+    model = SimpleNamespace(run=run, frame=30)
+    view = cloud_view(model)
+    artists = view.moving
+    model.run, model.frame = kf.sim.particle_loop(0, n_particles=500, kidnap=50), 40
+    update_cloud_view(view, model)
+    assert view.moving == artists  # the same artists, moved
+    assert view.note.get_text() == "" and view.kidnap.get_visible()
+    assert view.kidnap.get_xdata()[0] == model.run.t[50]
+    assert len(view.truth_before.get_xydata()) == 50
+    model.frame = 70
+    update_cloud_view(view, model)
+    assert view.note.get_text().startswith("kidnapped")
+
+
+def test_a_bigger_cloud_replaces_the_offsets(run):
+    model = SimpleNamespace(run=run, frame=10)
+    view = cloud_view(model)
+    model.run = kf.sim.particle_loop(0, n_particles=3000)
+    update_cloud_view(view, model)
+    assert view.cloud.get_offsets().shape == (3000, 2)
+    assert view.cloud in view.moving
+
+
+def test_bad_step(run):
+    view = cloud_view(SimpleNamespace(run=run, frame=0))
+    with pytest.raises(ValueError, match="k must be"):
+        update_cloud_view(view, SimpleNamespace(run=run, frame=run.t.size))
