@@ -29,11 +29,6 @@ import pytest
 
 from tests.servers import Served, free_port, tracked_hashes
 
-try:
-    from playwright.sync_api import TimeoutError as PlaywrightTimeoutError
-except ImportError:  # the `browser` fixture skips (fails on CI) with the reason
-    PlaywrightTimeoutError = TimeoutError
-
 pytestmark = pytest.mark.browser
 
 ROOT = Path(__file__).resolve().parents[2]
@@ -73,8 +68,24 @@ JS_SHOW_DEMO_CELL = """() => {
     return index;
 }"""
 
-JS_PICTURE_SHOWN = """(min) => { const img = document.querySelector('.kf-demo img.kf-figure');
-    return !!(img && img.getAttribute('src') && img.complete && img.naturalWidth >= min); }"""
+# The picture at rest: at least `min` pixels wide, crisp (two pixels per CSS pixel: a demo sends a
+# light picture while something moves and the crisp one a moment later), and the same src for
+# `quiet` ms, so that the picture compared is the one the student is left looking at.
+JS_PICTURE_SHOWN = """async ([min, quiet, max]) => {
+    const start = performance.now();
+    let src = null, since = performance.now();
+    while (performance.now() - start < max) {
+        const img = document.querySelector('.kf-demo img.kf-figure');
+        const now = img && img.getAttribute('src');
+        if (now !== src) { src = now; since = performance.now(); }
+        const ready = img && now && img.complete && img.naturalWidth >= min
+            && img.naturalWidth >= 2 * img.getBoundingClientRect().width - 1;
+        if (ready && performance.now() - since >= quiet) return true;
+        await new Promise(r => setTimeout(r, 50));
+    }
+    return false;
+}"""
+PICTURE_QUIET_MS = 1_000  # no new picture for this long: at rest
 
 # The picture's size and the SHA-256 of its bytes, to compare the reopened one with the one shown live.
 JS_PICTURE = """async () => {
@@ -150,9 +161,7 @@ def _open(page, url: str) -> None:
 def _wait_for_picture(page, when: str) -> None:
     if page.evaluate(JS_SHOW_DEMO_CELL) < 0:
         pytest.fail(f"{CHAPTER} has no demo cell (a cell calling kf.demos.*)", pytrace=False)
-    try:
-        page.wait_for_function(JS_PICTURE_SHOWN, arg=MIN_PICTURE_WIDTH, timeout=RENDER_TIMEOUT_MS, polling=100)
-    except PlaywrightTimeoutError:
+    if not page.evaluate(JS_PICTURE_SHOWN, [MIN_PICTURE_WIDTH, PICTURE_QUIET_MS, RENDER_TIMEOUT_MS]):
         shown = page.evaluate(
             "() => Array.from(document.querySelectorAll('.jp-OutputArea-output'))"
             ".map(o => o.innerText.trim()).filter(t => /widget/i.test(t)).join(' | ')"
