@@ -4,7 +4,8 @@ The map shows the landmarks (purple squares), the true path and robot (faint
 grey), the filter's trail and robot (teal, lightly filled), its 2-sigma position
 ellipse after the step's readings (teal) and before them (dashed purple, the
 prediction), drawn over the robots so that a small ellipse still shows,
-teal beams from the estimate to the landmarks the filter used at that step, and
+teal beams from the estimate to the landmarks the filter used at that step (to the
+landmark it matched each reading to, when the readings carry no labels: chapter 11), and
 dashed orange beams to those whose readings it rejected (outside its gate).
 
 Under the map, two strips show the position error along x and along y over the
@@ -18,7 +19,7 @@ step on it again; :func:`loop_chart` is the same picture once, for a notebook.
 
 Every function takes a run record with the fields of
 :class:`kfcourse.sim.LoopRun` (``t, dt, start, truth, landmarks, used,
-rejected, mu_bar, Sig_bar, mu, Sig, dropout, kidnap``); the ``update_*`` functions move what was drawn to
+rejected, matched, mu_bar, Sig_bar, mu, Sig, dropout, kidnap``); the ``update_*`` functions move what was drawn to
 another step (or another run) in place.
 """
 
@@ -105,7 +106,7 @@ class LoopMap:
     robot: Polygon
     prior_ring: Ellipse  #: 2-sigma, before the step's readings
     ring: Ellipse  #: 2-sigma, after them
-    beams: LineCollection  #: teal, to the landmarks whose readings were used
+    beams: LineCollection  #: teal, to the landmarks the filter used its readings as
     rejected: LineCollection  #: dashed orange, to those whose readings were rejected
     note: Text  #: "sensor blind", "sight back", "kidnapped", or nothing
 
@@ -212,7 +213,8 @@ def update_loop_map(view: LoopMap, run, k: int) -> None:
     update_covariance_ellipse(view.prior_ring, run.mu_bar[k], np.asarray(run.Sig_bar[k])[:2, :2])
     update_covariance_ellipse(view.ring, mu[k], np.asarray(run.Sig[k])[:2, :2])
     marks = np.asarray(run.landmarks)
-    update_beams(view.beams, mu[k], marks[np.asarray(run.used[k], bool)])
+    used = np.asarray(run.used[k], bool)
+    update_beams(view.beams, mu[k], marks[np.asarray(run.matched[k])[used]])  # to the landmark each was matched to
     update_beams(view.rejected, mu[k], marks[np.asarray(run.rejected[k], bool)])
     k0 = kidnap_step(run)
     if _blind(run, k):

@@ -4,8 +4,9 @@
 (and may be kidnapped), the filter is told them through noisy odometry, and the sensor
 reads the landmarks within range (unless it is blind).  :func:`localize` is the loop of
 chapter 8, over the public filter steps: predict with the odometry, then for each reading
-in view, gate it and update with it.  :func:`landmark_loop` puts the two together for
-every setting the course's last chapters push on.
+in view, find its landmark (its label, or chapter 8's nearest neighbour), gate it and update
+with it.  :func:`landmark_loop` puts the two together for every setting the course's last
+chapters push on.
 """
 
 from __future__ import annotations
@@ -16,7 +17,7 @@ from dataclasses import dataclass
 import numpy as np
 
 from .. import _validate as v
-from ..filters.association import mahalanobis
+from ..filters.association import associate, mahalanobis
 from ..filters.ekf import ekf_predict, ekf_update
 from ..filters.ukf import ukf_predict, ukf_update
 from ..models import (
@@ -52,6 +53,7 @@ class Track(Record):
     mu: np.ndarray  #: (T, n) estimate after the updates of step k
     Sig: np.ndarray  #: (T, n, n) its covariance
     used: np.ndarray  #: (T, L) bool: the readings the filter used (in view and inside the gate)
+    matched: np.ndarray  #: (T, L) int: the landmark the reading of landmark j was used as, -1 where not used
 
 
 @dataclass(frozen=True)
@@ -60,7 +62,8 @@ class LoopRun(Record):
 
     Step ``k``: the filter predicts with ``odometry[k]`` (giving ``mu_bar[k]``,
     ``Sig_bar[k]``), then updates with the readings ``z[k, used[k]]`` one landmark
-    at a time (giving ``mu[k]``, ``Sig[k]``).
+    at a time (giving ``mu[k]``, ``Sig[k]``), each as the reading of the landmark
+    ``matched[k, j]``: its own with labelled readings, the one it was matched to without.
     """
 
     t: np.ndarray  #: (T,) time after each step (s)
@@ -71,7 +74,9 @@ class LoopRun(Record):
     z: np.ndarray  #: (T, L, 2) readings [r, phi]; zeros where out of range
     used: np.ndarray  #: (T, L) bool: readings the filter used (in range, the sensor not blind, inside the gate)
     rejected: np.ndarray  #: (T, L) bool: readings in range while the sensor could see, but outside the gate
-    start: np.ndarray  #: (3,) the pose before the first step, known to the filter
+    matched: np.ndarray  #: (T, L) int: the map index the reading of landmark j was used as, -1 where not used
+    start: np.ndarray  #: (3,) the true pose before the first step
+    mu0: np.ndarray  #: (3,) the filter's mean at the start: the true start unless it was told otherwise
     Sig0: np.ndarray  #: (3, 3) the filter's covariance at the start
     mu_bar: np.ndarray  #: (T, 3) predicted mean, before the updates of step k
     Sig_bar: np.ndarray  #: (T, 3, 3) predicted covariance
@@ -91,6 +96,7 @@ class LoopRun(Record):
     kidnap: int | None  #: step at which the true robot was carried half a lap further on
     wrap_bearing: bool  #: whether the bearing innovation was wrapped to (-pi, pi]
     gate: float | None  #: validation gate in standard deviations, or None
+    labelled: bool  #: the readings came with the landmark they belong to; if not, nearest-neighbour association
     seed: int
 
     @property
@@ -167,9 +173,18 @@ def process_noise_of_odometry(mu, u, dt: float, M) -> np.ndarray:
     return W @ M @ W.T  # R = W M W^T
 
 
-def localize(world: RobotRun, predict: Callable, update: Callable, Sig0, accept: Callable | None = None) -> Track:
+def localize(
+    world: RobotRun,
+    predict: Callable,
+    update: Callable,
+    Sig0,
+    accept: Callable | None = None,
+    *,
+    mu0=None,
+    identify: Callable | None = None,
+) -> Track:
     """The localization loop of chapter 8: at each step predict with the odometry, then for each
-    landmark in view, gate its reading and update with it, one landmark at a time.
+    reading in view, find which landmark it belongs to, gate it and update with it, one landmark at a time.
 
     Introduced in chapter 8; chapter 7's :func:`~kfcourse.sim.run_ekf` and chapter 10's
     :func:`landmark_loop` run it.
@@ -181,28 +196,36 @@ def localize(world: RobotRun, predict: Callable, update: Callable, Sig0, accept:
     predict : callable ``predict(mu, Sig, odometry) -> (mu_bar, Sig_bar)``
     update : callable ``update(mu_bar, Sig_bar, z, landmark) -> (mu, Sig)``
     Sig0 : array_like, shape (n, n)
-        The filter's covariance at the start; its mean is ``world.start``.
+        The filter's covariance at the start.
     accept : callable ``accept(mu_bar, Sig_bar, z, landmark) -> bool``, optional
         The validation gate: a reading it refuses is not used.  By default every reading is.
+    mu0 : array_like, shape (n,), optional
+        The filter's mean at the start; by default the true start ``world.start``.
+    identify : callable ``identify(mu_bar, Sig_bar, z) -> int or None``, optional
+        Which landmark of the map a reading belongs to, worked out by the filter
+        (:func:`nearest_landmark`), or ``None`` to refuse it.  By default the readings
+        are labelled: the reading of landmark ``j`` is used as landmark ``j``'s.
 
     Returns
     -------
     Track
     """
     T, L = world.visible.shape
-    mu, Sig = np.array(world.start), np.array(Sig0, dtype=float)
+    mu, Sig = np.array(world.start if mu0 is None else mu0, dtype=float), np.array(Sig0, dtype=float)
     mu_bar, Sig_bar = np.empty((T, *mu.shape)), np.empty((T, *Sig.shape))
     mus, Sigs, used = np.empty_like(mu_bar), np.empty_like(Sig_bar), np.zeros((T, L), dtype=bool)
+    matched = np.full((T, L), -1)
     for k in range(T):
-        mu, Sig = predict(mu, Sig, world.odometry[k])
+        mu, Sig = predict(mu, Sig, world.odometry[k])  # 1. predict with the odometry
         mu_bar[k], Sig_bar[k] = mu, Sig
-        for j in np.flatnonzero(world.visible[k]):  # sequential updates, one landmark at a time
-            z, m = world.z[k, j], world.landmarks[j]
-            if accept is None or accept(mu, Sig, z, m):
-                mu, Sig = update(mu, Sig, z, m)
-                used[k, j] = True
+        for j in np.flatnonzero(world.visible[k]):  # sequential updates, one reading at a time
+            z = world.z[k, j]
+            i = j if identify is None else identify(mu, Sig, z)  # 2. which landmark: the label, or the filter's guess
+            if i is not None and (accept is None or accept(mu, Sig, z, world.landmarks[i])):  # 3. gate
+                mu, Sig = update(mu, Sig, z, world.landmarks[i])  # 4. update as landmark i's reading
+                used[k, j], matched[k, j] = True, i
         mus[k], Sigs[k] = mu, Sig
-    return Track(mu_bar=mu_bar, Sig_bar=Sig_bar, mu=mus, Sig=Sigs, used=used)
+    return Track(mu_bar=mu_bar, Sig_bar=Sig_bar, mu=mus, Sig=Sigs, used=used, matched=matched)
 
 
 def loop_filter(filter: str, dt: float, M, Q, wrap_bearing: bool = True) -> tuple[Callable, Callable]:
@@ -248,6 +271,20 @@ def gate_within(gate: float, Q, wrap_bearing: bool = True) -> Callable:
     return accept
 
 
+def nearest_landmark(landmarks, gate: float | None, Q, wrap_bearing: bool = True) -> Callable:
+    """Data association (chapter 8) for readings without labels: match a reading to the landmark of the map
+    nearest in Mahalanobis distance (:func:`~kfcourse.associate`), or refuse it if even that one lies
+    beyond ``gate``; with no gate (``None``) always the nearest.  Introduced in chapter 11."""
+    residual = range_bearing_residual if wrap_bearing else None
+
+    def identify(mu_bar, Sig_bar, z) -> int | None:
+        h, H = range_bearing, range_bearing_jacobian
+        best, dist = associate(z, mu_bar, Sig_bar, landmarks, h, H, Q, 1.0 if gate is None else gate, residual)
+        return int(np.argmin(dist)) if gate is None else best  # no gate: the nearest, however far
+
+    return identify
+
+
 def loop_world(
     seed: int = 0, motion_noise: float = 1.0, sensor_noise: float = 1.0, landmarks=None, **drive
 ) -> RobotRun:
@@ -271,17 +308,18 @@ def loop_world(
     )
 
 
-def localize_with_step(world: RobotRun, step: Callable, Sig0, M, Q, gate: float, name: str = "step") -> Track:
+def localize_with_step(world: RobotRun, step: Callable, Sig0, M, Q, gate: float, name: str = "step", mu0=None) -> Track:
     """The localization loop run by one function: ``step`` does a whole step, prediction and updates.
 
     ``step(mu, Sig, u, z, landmarks, dt, M, Q, gate) -> (mu, Sig, used)`` gets the readings
     of the landmarks in view at each step (chapter 10's exercise, the interface of
     :func:`~kfcourse.ekf_localization_step`).  Its prediction, for the record, is the same
     function with no reading.  What it returns is checked at every step: a
-    ``ValueError`` names the function, the step and what went wrong.  Introduced in chapter 10.
+    ``ValueError`` names the function, the step and what went wrong.  The readings are labelled; the
+    filter starts at ``mu0``, by default the true start.  Introduced in chapter 10.
     """
     T, L = world.visible.shape
-    mu, Sig = np.array(world.start), np.array(Sig0, dtype=float)
+    mu, Sig = np.array(world.start if mu0 is None else mu0, dtype=float), np.array(Sig0, dtype=float)
     mu_bar, Sig_bar = np.empty((T, 3)), np.empty((T, 3, 3))
     mus, Sigs, used = np.empty_like(mu_bar), np.empty_like(Sig_bar), np.zeros((T, L), dtype=bool)
     nothing = np.empty((0, 2))
@@ -292,7 +330,8 @@ def localize_with_step(world: RobotRun, step: Callable, Sig0, M, Q, gate: float,
         z, marks = world.z[k, seen], world.landmarks[seen]
         mu, Sig, used[k, seen] = _step_output(step, name, k, len(seen), mu, Sig, u, z, marks, world.dt, M, Q, gate)
         mus[k], Sigs[k] = mu, Sig
-    return Track(mu_bar=mu_bar, Sig_bar=Sig_bar, mu=mus, Sig=Sigs, used=used)
+    matched = np.where(used, np.arange(L), -1)  # each reading used as its own landmark's
+    return Track(mu_bar=mu_bar, Sig_bar=Sig_bar, mu=mus, Sig=Sigs, used=used, matched=matched)
 
 
 def _step_output(step, name, k, n_seen, *args):
@@ -346,16 +385,19 @@ def landmark_loop(
     laps: int = 1,
     landmarks=None,
     sensor_range: float = 4.0,
+    start=None,
+    labelled: bool = True,
 ) -> LoopRun:
     r"""Drive the loop of :func:`loop_controls` through a map and localize with an EKF, a UKF or your own step.
 
     The world is :func:`~kfcourse.sim.simulate_robot`'s, draw for draw.  The filter
-    starts at the true start with covariance :data:`SIG0`.  Its R (the odometry noise
+    starts at the true start (or at ``start``) with covariance :data:`SIG0`.  Its R (the odometry noise
     it assumes, mapped into the pose) and its Q are the world's own unless
     ``filter_motion_noise`` or ``filter_sensor_noise`` say otherwise: by default the
     filter is honest about the noise.
 
-    Introduced in chapter 8; the capstone of chapter 10 drives every argument.
+    Introduced in chapter 8; the capstone of chapter 10 drives every argument, chapter 11
+    ``start`` and ``labelled``.
 
     Parameters
     ----------
@@ -399,6 +441,16 @@ def landmark_loop(
         The map (m); by default :data:`~kfcourse.sim.DEFAULT_LANDMARKS`.
     sensor_range : float
         Largest range at which a landmark is seen (m), > 0.
+    start : array_like, shape (3,), optional
+        The filter's mean at the start, ``[x, y, theta]``; by default the true start.
+        The truth starts where it always does (``LoopRun.start``); this is ``LoopRun.mu0``.
+    labelled : bool
+        The readings come with the landmark they belong to (the default).  False: the
+        filter matches each reading to a landmark of the whole map itself, by the
+        nearest neighbour of chapter 8 at its current mean (:func:`nearest_landmark`,
+        gated by ``gate``, always the nearest without one), and uses it as that
+        landmark's reading; ``LoopRun.matched`` records the match.  Only for "ekf" and
+        "ukf": a step function gets labelled readings.
 
     Returns
     -------
@@ -421,24 +473,33 @@ def landmark_loop(
             "wrap_bearing=False switches the wrap off in the course's filters only; a step function wraps as written"
         )
     gate = None if gate is None else v.positive(gate, "gate", "a distance", "standard deviations")
+    mu0 = None if start is None else v.vector(start, "start", 3)
+    labelled = v.flag(labelled, "labelled")
+    if callable(filter) and not labelled:
+        raise ValueError(
+            "labelled=False leaves the association to the course's filters only; a step function gets labelled readings"
+        )
     drive = {"sensor_range": sensor_range, "laps": laps, "kidnap": kidnap, "dropout": dropout, "one_back": one_back}
     world = loop_world(seed, motion_noise, sensor_noise, landmarks, **drive)
+    mu0 = world.start if mu0 is None else mu0
     dt = world.dt
     M = np.diag([trust_motion * V_STD, trust_motion * OMEGA_STD]) ** 2  # the odometry noise the filter assumes
     Q = np.diag([trust_sensor * RANGE_STD, trust_sensor * BEARING_STD]) ** 2  # the reading noise it assumes
     if callable(filter):
-        track = localize_with_step(world, filter, SIG0, M, Q, np.inf if gate is None else gate, name)
+        track = localize_with_step(world, filter, SIG0, M, Q, np.inf if gate is None else gate, name, mu0)
     else:
         predict, update = loop_filter(filter, dt, M, Q, wrap_bearing)
-        accept = None if gate is None else gate_within(gate, Q, wrap_bearing)
+        accept = None if gate is None or not labelled else gate_within(gate, Q, wrap_bearing)
+        identify = None if labelled else nearest_landmark(world.landmarks, gate, Q, wrap_bearing)  # gates too
         try:
-            track = localize(world, predict, update, SIG0, accept)
+            track = localize(world, predict, update, SIG0, accept, mu0=mu0, identify=identify)
         except ValueError as err:  # a covariance no longer positive semi-definite, at extreme noise
             raise ValueError(
                 f"the {filter.upper()} broke down with {motion_noise=} and {sensor_noise=}: {err}"
             ) from None
     noise = (motion_noise, sensor_noise, trust_motion, trust_sensor)
-    return _loop_run(world, track, filter=name, wrap_bearing=wrap_bearing, gate=gate, noise=noise)
+    setting = {"filter": name, "wrap_bearing": wrap_bearing, "gate": gate, "labelled": labelled, "noise": noise}
+    return _loop_run(world, track, mu0, **setting)
 
 
 def _position_nees(err, Sxy) -> np.ndarray:
@@ -456,7 +517,7 @@ def _position_nees(err, Sxy) -> np.ndarray:
     return np.where(off > 1e-9 * (1.0 + np.linalg.norm(err, axis=1)), np.inf, d2)
 
 
-def _loop_run(world: RobotRun, track: Track, *, filter, wrap_bearing, gate, noise) -> LoopRun:
+def _loop_run(world: RobotRun, track: Track, mu0, *, filter, wrap_bearing, gate, labelled, noise) -> LoopRun:
     """The record of one lap: the world, the filter's track, and the truth measured against it.
 
     ``noise`` is (world's motion, world's sensor, filter's motion, filter's sensor) noise scales."""
@@ -472,7 +533,9 @@ def _loop_run(world: RobotRun, track: Track, *, filter, wrap_bearing, gate, nois
         z=world.z,
         used=track.used,
         rejected=world.visible & ~track.used,
+        matched=track.matched,
         start=world.start,
+        mu0=mu0,
         Sig0=SIG0,
         mu_bar=track.mu_bar,
         Sig_bar=track.Sig_bar,
@@ -492,5 +555,6 @@ def _loop_run(world: RobotRun, track: Track, *, filter, wrap_bearing, gate, nois
         kidnap=world.kidnap,
         wrap_bearing=wrap_bearing,
         gate=gate,
+        labelled=labelled,
         seed=world.seed,
     )

@@ -133,3 +133,36 @@ def test_a_new_run_redraws_the_background_only_when_the_limits_change():
         full = np.asarray(demo.renderer.image(), dtype=float)
         assert (np.abs(shown - full).max(axis=2) > 40).sum() == 0
     assert len(tops) >= 4 and kept >= 1  # the limits did change on the way, and some changes kept them
+
+
+def sorted_rows(points) -> np.ndarray:
+    points = np.asarray(points, float).reshape(-1, 2)
+    return points[np.lexsort(points.T[::-1])]
+
+
+def beam_ends(lines) -> np.ndarray:
+    """The far end of every beam drawn, sorted by row."""
+    return sorted_rows([seg[-1] for seg in lines.get_segments()])
+
+
+def test_the_teal_beams_go_to_the_landmarks_the_filter_matched():
+    """An EKF started at the mirror of the start, its readings unlabelled, matches each reading to the
+    mirror landmark: its teal beams run from its estimate to those; the orange ones, to the landmarks
+    whose readings it refused, as with labels."""
+    labelled = kf.sim.landmark_loop(0, gate=4.0, kidnap=60)
+    mirror = kf.sim.landmark_loop(0, gate=4.0, labelled=False, start=[0.0, 5.0, np.pi])
+    k = int(np.flatnonzero(mirror.used.sum(axis=1) >= 2)[0])  # the first step with two readings
+    used = np.flatnonzero(mirror.used[k])
+    for run in (labelled, mirror):
+        _, ax_map, _ = loop_figure(run)
+        view = loop_map(ax_map, run, k)
+        shown = np.flatnonzero(run.used[k])
+        np.testing.assert_allclose(beam_ends(view.beams), sorted_rows(run.landmarks[run.matched[k, shown]]))
+        assert all(np.allclose(seg[0], run.mu[k, :2]) for seg in view.beams.get_segments())
+    mirrored = [-1, -1] * mirror.landmarks[used] + [0, 5]  # (x, y) -> (-x, 5 - y): the mirror landmarks
+    np.testing.assert_allclose(mirror.landmarks[mirror.matched[k, used]], mirrored)
+    assert not np.allclose(mirrored, mirror.landmarks[used])  # not the readings' own
+    _, ax_map, _ = loop_figure(labelled)
+    view = loop_map(ax_map, labelled, 90)  # after the kidnap: refused readings, drawn to their own landmarks
+    refused = labelled.landmarks[labelled.rejected[90]]
+    assert len(refused) and np.allclose(beam_ends(view.rejected), sorted_rows(refused))

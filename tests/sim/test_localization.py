@@ -101,10 +101,10 @@ def test_a_gate_at_the_default_run_rejects_almost_nothing():
 @pytest.mark.parametrize("filter", ["ekf", "ukf"])
 @pytest.mark.parametrize("motion_noise", [0.1, 10.0])
 @pytest.mark.parametrize("sensor_noise", [0.1, 10.0])
-def test_noise_extremes_stay_finite(filter, motion_noise, sensor_noise):
-    run = kf.sim.landmark_loop(
-        0, filter=filter, motion_noise=motion_noise, sensor_noise=sensor_noise, dropout=(30, 70), gate=3.035
-    )
+@pytest.mark.parametrize("labelled", [True, False])
+def test_noise_extremes_stay_finite(filter, motion_noise, sensor_noise, labelled):
+    noise = {"motion_noise": motion_noise, "sensor_noise": sensor_noise}
+    run = kf.sim.landmark_loop(0, filter=filter, **noise, dropout=(30, 70), gate=3.035, labelled=labelled)
     for name in ("mu", "Sig", "mu_bar", "Sig_bar", "error", "area"):
         assert np.isfinite(getattr(run, name)).all(), name
     assert np.all(np.linalg.eigvalsh(run.Sig) > 0)
@@ -139,6 +139,9 @@ def test_process_noise_of_odometry_maps_the_control_noise():
         ({"laps": 0}, "laps"),
         ({"sensor_range": -1.0}, "sensor_range"),
         ({"landmarks": [[1.0, 2.0, 3.0]]}, "landmarks"),
+        ({"start": [0.0, 0.0]}, "start"),
+        ({"start": [0.0, np.nan, 0.0]}, "start"),
+        ({"labelled": "no"}, "labelled"),
     ],
 )
 def test_bad_input_names_the_argument(kwargs, name):
@@ -291,6 +294,69 @@ def test_a_flat_ellipse_the_truth_leaves_is_infinitely_unlikely():
 def test_a_step_function_wraps_as_written():
     with pytest.raises(ValueError, match=r"^wrap_bearing=False"):
         kf.sim.landmark_loop(0, filter=chapter_step, wrap_bearing=False)
+
+
+def test_a_step_function_gets_labelled_readings_and_may_start_elsewhere():
+    with pytest.raises(ValueError, match=r"^labelled=False .* a step function gets labelled readings"):
+        kf.sim.landmark_loop(0, filter=chapter_step, labelled=False)
+    start = [0.3, -0.2, 0.1]
+    mine = kf.sim.landmark_loop(0, filter=chapter_step, gate=4.0, start=start)
+    ekf = kf.sim.landmark_loop(0, gate=4.0, start=start)
+    np.testing.assert_allclose(mine.mu, ekf.mu, atol=1e-9)
+    np.testing.assert_array_equal(mine.matched, ekf.matched)
+
+
+# ---------------------------------------------------- chapter 11: the filter's start, readings without labels
+def test_by_default_the_filter_starts_at_the_truth_with_labelled_readings(ekf_run):
+    np.testing.assert_array_equal(ekf_run.mu0, ekf_run.start)
+    np.testing.assert_array_equal(ekf_run.start, [0.0, 0.0, 0.0])
+    assert ekf_run.labelled
+    gated = kf.sim.landmark_loop(0, kidnap=60, gate=4.0)  # some readings refused
+    for run in (ekf_run, gated):
+        lab = np.broadcast_to(np.arange(run.landmarks.shape[0]), run.used.shape)
+        np.testing.assert_array_equal(run.matched, np.where(run.used, lab, -1))  # its own landmark, where used
+    assert gated.rejected.any()
+
+
+def test_the_start_moves_the_filter_not_the_truth(ekf_run):
+    start = [0.5, -0.3, 0.2]
+    run = kf.sim.landmark_loop(0, start=start)
+    np.testing.assert_array_equal(run.mu0, start)
+    np.testing.assert_array_equal(run.start, ekf_run.start)
+    np.testing.assert_array_equal(run.truth, ekf_run.truth)
+    g = kf.unicycle(start, run.odometry[0], run.dt)  # the first prediction moves the filter's start
+    np.testing.assert_allclose(run.mu_bar[0], g, atol=1e-12)
+    assert np.linalg.norm(run.mu_bar[0, :2] - ekf_run.mu_bar[0, :2]) > 0.5
+
+
+@pytest.mark.parametrize("filter", ["ekf", "ukf"])
+def test_unlabelled_readings_are_matched_by_the_filter_at_its_current_mean(filter):
+    """At the true start the nearest neighbour always finds the reading's own landmark: the same run."""
+    labelled = kf.sim.landmark_loop(3, filter=filter, gate=4.0)
+    run = kf.sim.landmark_loop(3, filter=filter, gate=4.0, labelled=False)
+    assert not run.labelled
+    np.testing.assert_array_equal(run.matched, labelled.matched)
+    np.testing.assert_array_equal(run.used, labelled.used)
+    np.testing.assert_allclose(run.mu, labelled.mu, atol=1e-12)
+
+
+def test_an_unlabelled_reading_is_used_as_the_landmark_it_is_matched_to():
+    """Every used reading, as the reading of the landmark it was matched to, is the nearest in
+    Mahalanobis distance at the step's prediction: the first reading of each step is matched there."""
+    run = kf.sim.landmark_loop(0, labelled=False, start=[0.0, 5.0, np.pi])  # the mirror of the start
+    Q = np.diag([0.1, 0.03]) ** 2
+    h, H = kf.range_bearing, kf.range_bearing_jacobian
+    res = kf.models.range_bearing_residual
+    firsts = 0
+    for k in range(run.t.size):
+        seen = np.flatnonzero(run.used[k] | run.rejected[k])
+        if seen.size:
+            z = run.z[k, seen[0]]
+            _, dist = kf.associate(z, run.mu_bar[k], run.Sig_bar[k], run.landmarks, h, H, Q, 1.0, res)
+            assert run.matched[k, seen[0]] == int(np.argmin(dist))
+            firsts += 1
+    assert firsts > 100
+    assert (run.matched[~run.used] == -1).all() and (run.matched[run.used] >= 0).all()
 
 
 def test_an_ellipse_too_small_to_invert_has_an_infinite_nees_without_a_warning():
