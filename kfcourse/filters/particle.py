@@ -10,6 +10,10 @@ with the chapter's equation numbers:
     (3)\ \ell^{[i]} \mathrel{+}= \textstyle\sum_j \log \mathcal N(\nu_j^{[i]}; 0, Q),\
          \nu_j^{[i]} = [z_j - h_j(\bar x^{[i]})]_{\text{wrapped}}
 
+    (3')\ \ell^{[i]} \mathrel{+}= \textstyle\sum_j \log \frac1L \sum_{m=1}^{L} \mathcal N(\nu_{jm}^{[i]}; 0, Q),\
+         \nu_{jm}^{[i]} = [z_j - h_m(\bar x^{[i]})]_{\text{wrapped}}
+         \quad (\text{unlabelled readings: any of the map's } L \text{ landmarks})
+
     (4)\ w^{[i]} = \frac{e^{\ell^{[i]} - \ell_{\max}}}{\sum_k e^{\ell^{[k]} - \ell_{\max}}} \qquad
     (5)\ N_{\text{eff}} = 1 / \textstyle\sum_i (w^{[i]})^2 \qquad
     (6)\ \text{resample: } c_i = \textstyle\sum_{k \le i} w^{[k]},\ c_N = 1,\
@@ -129,8 +133,10 @@ def pf_predict(particles, u, dt, M, rng: np.random.Generator) -> np.ndarray:
     return unicycle(x, u_i, dt)  # (2) x_bar_i = g(x_i, u_i), each particle with its own control
 
 
-def pf_weight(particles, z, landmarks, Q, log_w=None) -> np.ndarray:
-    r"""Weigh every particle by the likelihood of the readings, in log space: equation (3).
+def pf_weight(particles, z, landmarks, Q, log_w=None, labelled: bool = True) -> np.ndarray:
+    r"""Weigh every particle by the likelihood of the readings, in log space: equation (3), or (3').
+
+    Labelled readings, each with the landmark it came from (``labelled=True``), equation (3):
 
     .. math:: \ell^{[i]} \leftarrow \ell^{[i]} + \sum_j \log \mathcal N(\nu_j^{[i]}; 0, Q), \qquad
               \nu_j^{[i]} = [z_j - h_j(\bar x^{[i]})]_{\text{bearing wrapped}}
@@ -139,7 +145,19 @@ def pf_weight(particles, z, landmarks, Q, log_w=None) -> np.ndarray:
     The logarithm turns the product of the readings' likelihoods into a sum: twenty readings
     of a particle 10 σ off multiply to about :math:`e^{-1000}`, which is 0 in floating point,
     while its log-weight, about -1000, is an ordinary number.  :func:`normalise` turns the
-    log-weights into weights.  Introduced in chapter 11.
+    log-weights into weights.
+
+    Unlabelled readings (``labelled=False``): the sensor does not say which landmark it saw, so
+    a reading may come from any of the map's L landmarks, each as likely a priori (Thrun's
+    unknown correspondence).  Its likelihood is the mixture over the map, equation (3'):
+
+    .. math:: \ell^{[i]} \leftarrow \ell^{[i]} + \sum_j \log \frac1L \sum_{m=1}^{L}
+              \mathcal N(\nu_{jm}^{[i]}; 0, Q), \qquad
+              \nu_{jm}^{[i]} = [z_j - h_m(\bar x^{[i]})]_{\text{bearing wrapped}}
+
+    The inner sum is taken by the log-sum-exp trick of (4), so it never underflows: a particle
+    far from every landmark keeps a finite log-weight.  On a map that looks the same from two
+    poses, both poses get the same weight.  Introduced in chapter 11.
 
     Parameters
     ----------
@@ -147,13 +165,17 @@ def pf_weight(particles, z, landmarks, Q, log_w=None) -> np.ndarray:
         Poses ``[x, y, theta]``, one a row.
     z : array_like, shape (k, 2)
         Readings ``[r, phi]`` (m, rad); k may be 0 (then the weights do not change).
-    landmarks : array_like, shape (k, 2)
-        The landmark of each reading, row j the landmark of ``z[j]``.
+    landmarks : array_like, shape (k, 2) or (L, 2)
+        Labelled: the landmark of each reading, row j the landmark of ``z[j]``.
+        Unlabelled: the whole map, L >= 1 landmarks (any L, whatever k).
     Q : array_like, shape (2, 2)
         Covariance of the reading noise, positive definite.
     log_w : array_like, shape (N,), optional
         Log-weights before these readings (``-inf`` for a weight of 0); by default all
         equal (0), as after resampling.
+    labelled : bool
+        True: each reading comes with its landmark, (3).  False: it may come from any landmark
+        of the map, (3').
 
     Returns
     -------
@@ -162,17 +184,31 @@ def pf_weight(particles, z, landmarks, Q, log_w=None) -> np.ndarray:
     """
     x = _particles(particles)
     z = _pairs(z, "z")
-    landmarks = _pairs(landmarks, "landmarks", z.shape[0])
+    labelled = v.flag(labelled, "labelled")
+    landmarks = _pairs(landmarks, "landmarks", z.shape[0] if labelled else None)
+    if not labelled and len(z) > 0 and len(landmarks) == 0:
+        raise ValueError("landmarks must be the whole map, shape (L, 2) with L >= 1, for unlabelled readings")
     Q = v.covariance(Q, "Q", 2)
     sign, logdet = np.linalg.slogdet(2.0 * np.pi * Q)
     if sign <= 0:
         raise ValueError("Q must be positive definite: a reading with no noise gives no likelihood")
     Q_inv = np.linalg.inv(Q)
     log_w = np.zeros(len(x)) if log_w is None else _log_weights(log_w, "log_w", len(x))
-    for z_j, m in zip(z, landmarks, strict=True):  # one landmark at a time, every particle at once
-        nu = range_bearing_residual(z_j, range_bearing(x, m))  # nu = z_j - h_j(x), bearing wrapped: (N, 2)
-        d2 = np.sum(nu @ Q_inv * nu, axis=1)  # nu^T Q^-1 nu for each particle
-        log_w = log_w - 0.5 * (d2 + logdet)  # (3) log N(nu; 0, Q) = -(nu^T Q^-1 nu + log det 2 pi Q) / 2
+    if labelled:
+        for z_j, m in zip(z, landmarks, strict=True):  # one landmark at a time, every particle at once
+            nu = range_bearing_residual(z_j, range_bearing(x, m))  # nu = z_j - h_j(x), bearing wrapped: (N, 2)
+            d2 = np.sum(nu @ Q_inv * nu, axis=1)  # nu^T Q^-1 nu for each particle
+            log_w = log_w - 0.5 * (d2 + logdet)  # (3) log N(nu; 0, Q) = -(nu^T Q^-1 nu + log det 2 pi Q) / 2
+        return log_w
+    if len(z) == 0:
+        return log_w  # no reading: the weights do not change
+    L, N = len(landmarks), len(x)
+    h = np.vstack([range_bearing(x, m) for m in landmarks])  # h_m(x) of every landmark m, every particle: (L N, 2)
+    for z_j in z:  # one reading at a time, every landmark it may come from, every particle at once
+        nu = range_bearing_residual(z_j, h)  # nu_jm = z_j - h_m(x), bearing wrapped: (L N, 2)
+        log_p = -0.5 * (np.sum(nu @ Q_inv * nu, axis=1) + logdet).reshape(L, N)  # log N(nu_jm; 0, Q): row m
+        top = log_p.max(axis=0)  # the likeliest landmark for each particle: e^(log_p - top) <= 1, one of them 1
+        log_w = log_w + top + np.log(np.exp(log_p - top).sum(axis=0) / L)  # (3') log (1/L) sum_m N(nu_jm; 0, Q)
     return log_w
 
 

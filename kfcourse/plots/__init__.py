@@ -27,6 +27,7 @@ from .ekf import jacobian_runs_chart, nonlinear_samples_chart
 from .localization import gate_outline, reading_points, update_ellipse_chart, wrap_runs_chart
 from .loop import loop_chart, position_errors
 from .matrix import predict_update_chart
+from .particles import cloud_chart
 from .runs import kf_run_chart
 from .style import FigureRenderer, new_figure
 from .ukf import filter_comparison_chart, transform_moments_chart
@@ -37,6 +38,7 @@ __all__ = [
     "beams",
     "belief_bars",
     "blend_variance_chart",
+    "cloud_chart",
     "convergence_chart",
     "covariance_ellipse",
     "drift_chart",

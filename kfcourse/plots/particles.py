@@ -14,12 +14,14 @@ filter resamples and a cursor at the step shown.
 :func:`cloud_view` draws the picture for a demo's model (anything with a run record ``run``
 and a step ``frame``); :func:`update_cloud_view` shows the model's run and step on it again,
 moving the artists in place (10 000 dots are one scatter whose offsets are replaced).
+:func:`cloud_chart` is the same picture, of one run at one step, for a figure in the chapter.
 Every function takes a run record with the fields of :class:`kfcourse.sim.ParticleRun`.
 """
 
 from __future__ import annotations
 
 from dataclasses import dataclass
+from types import SimpleNamespace
 
 import numpy as np
 from matplotlib.collections import LineCollection, PathCollection
@@ -35,7 +37,7 @@ from .loop import MAP_MARGIN, ROBOT_FILL, ROBOT_SIZE, TRUTH_SIZE
 from .loop_strips import NSIG, kidnap_step, run_step
 from .style import new_figure
 
-__all__ = ["CloudView", "cloud_view", "update_cloud_view", "weight_shades"]
+__all__ = ["CloudView", "cloud_chart", "cloud_view", "update_cloud_view", "weight_shades"]
 
 DOT_SIZE = 4.0  # points squared: 10 000 dots still leave the map readable
 WEIGHTS = LinearSegmentedColormap.from_list("weights", ["#d6cbef", palette.PREDICTION])  # light to heavy
@@ -108,7 +110,7 @@ def _map_extent(run) -> tuple[np.ndarray, np.ndarray]:
     return points.min(axis=0) - MAP_MARGIN, points.max(axis=0) + MAP_MARGIN
 
 
-def cloud_view(model, width: float = 6.4) -> CloudView:
+def cloud_view(model, width: float = 6.4, dot_size: float = DOT_SIZE) -> CloudView:
     """The map with the particle cloud, and the ESS strip under it, at the model's run and step.
 
     Introduced in chapter 11.
@@ -121,6 +123,9 @@ def cloud_view(model, width: float = 6.4) -> CloudView:
         runs must drive the same loop.
     width : float
         Inches.
+    dot_size : float
+        Area of each particle's dot (points squared): small for a cloud of thousands, larger
+        to see a tight cloud of a few centimetres on the whole map.
 
     Returns
     -------
@@ -145,7 +150,7 @@ def cloud_view(model, width: float = 6.4) -> CloudView:
     (truth_before,) = ax.plot([], [], **path)
     (truth_after,) = ax.plot([], [], **path)
     cloud = ax.scatter(
-        np.zeros(1), np.zeros(1), s=DOT_SIZE, c=[1.0], cmap=WEIGHTS, vmin=0.0, vmax=1.0, linewidths=0, zorder=4.5
+        np.zeros(1), np.zeros(1), s=dot_size, c=[1.0], cmap=WEIGHTS, vmin=0.0, vmax=1.0, linewidths=0, zorder=4.5
     )
     lines = beams(ax)
     (trail,) = ax.plot([], [], color=palette.ESTIMATE, lw=1.6, alpha=0.9)
@@ -173,7 +178,7 @@ def cloud_view(model, width: float = 6.4) -> CloudView:
     strip.set_xlim(t[0], t[-1])
     strip.set_ylim(0.0, 1.05)
     strip.set_yticks([0.0, 0.5, 1.0])
-    strip.set_ylabel("ESS / N")
+    strip.set_ylabel("N$_{\\mathrm{eff}}$ / N")
     strip.set_xlabel("time (s)")
     strip.axhline(RESAMPLE_LINE, color=palette.INK, lw=1.2, ls="--", label="resample below N/2")
     kidnap = strip.axvline(t[0], color=palette.INK, lw=1.2, ls=":", visible=False)
@@ -186,6 +191,28 @@ def cloud_view(model, width: float = 6.4) -> CloudView:
     )
     update_cloud_view(view, model)
     return view
+
+
+def cloud_chart(run, k: int | None = None, width: float = 6.4, dot_size: float = DOT_SIZE) -> Figure:
+    """The particle cloud of a run at step ``k``, with the ESS strip: the demo's picture, standing still.
+
+    Introduced in chapter 11.
+
+    Parameters
+    ----------
+    run : ParticleRun
+    k : int, optional
+        The step shown; by default the last.
+    width : float
+        Inches.
+    dot_size : float
+        Area of each particle's dot (points squared), as in :func:`cloud_view`.
+
+    Returns
+    -------
+    matplotlib.figure.Figure
+    """
+    return cloud_view(SimpleNamespace(run=run, frame=run_step(run, k)), width, dot_size).fig
 
 
 def update_cloud_view(view: CloudView, model) -> None:

@@ -28,7 +28,7 @@ from .localization import (
     process_noise_of_odometry,
 )
 from .outlier import OutlierRun, plain_and_gated
-from .particle import ParticleRun, particle_loop
+from .particle import ParticleRun, localized, particle_loop
 from .particle_hallway import ParticleHallwayRun, simulate_particle_hallway
 from .robot import DEFAULT_LANDMARKS, RobotRun, loop_controls, readings, simulate_robot
 from .target import (
@@ -78,6 +78,7 @@ __all__ = [
     "landmark_loop",
     "localize",
     "localize_with_step",
+    "localized",
     "loop_controls",
     "loop_filter",
     "loop_world",

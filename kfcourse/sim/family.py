@@ -19,7 +19,7 @@ import numpy as np
 
 from .. import _validate as v
 from .localization import landmark_loop
-from .particle import LOCALIZED, MAX_PARTICLES, particle_loop
+from .particle import LOCALIZED, MAX_PARTICLES, localized, particle_loop
 from .records import Record, text_table
 
 KIDNAP = 60  # the step of chapter 10's kidnap, about half a lap
@@ -112,21 +112,15 @@ def _seed_span(seeds: np.ndarray) -> str:
     return ", ".join(str(s) for s in seeds)
 
 
-def _localized(run) -> bool:
-    """The test of :meth:`~kfcourse.sim.ParticleRun.localized`, for a one-lap run of any filter:
-    the position error stays under :data:`~kfcourse.sim.particle.LOCALIZED` over the last quarter lap."""
-    return bool((run.error[-(len(run.t) // 4) :] < LOCALIZED).all())
-
-
 def _score(name: str, drive, seeds, kidnapped: dict, global_start: dict | None) -> FilterScore:
     """Run one filter over the seeds: a normal lap, a kidnapped lap and (unless None) a global start each.
 
     ``drive(seed, **settings)`` runs one lap.  The runs are measured one by one and not kept
     (a particle filter's lap keeps its whole cloud)."""
-    error, inside, found, localized = [], [], [], []
+    error, inside, found, from_anywhere = [], [], [], []
     seconds, steps = 0.0, 0
     for seed in seeds:
-        for settings, measure in (({}, None), (kidnapped, found), (global_start, localized)):
+        for settings, measure in (({}, None), (kidnapped, found), (global_start, from_anywhere)):
             if settings is None:
                 continue
             start = time.perf_counter()
@@ -136,13 +130,13 @@ def _score(name: str, drive, seeds, kidnapped: dict, global_start: dict | None) 
                 error.append(run.error.mean())
                 inside.append(run.share_inside)
             else:
-                measure.append(_localized(run))
+                measure.append(localized(run))
     return FilterScore(
         name=name,
         error=np.array(error),
         inside=np.array(inside),
         found=np.array(found),
-        localized=None if global_start is None else np.array(localized),
+        localized=None if global_start is None else np.array(from_anywhere),
         ms_per_step=1000.0 * seconds / steps,
     )
 
@@ -156,7 +150,7 @@ def family_table(seeds=range(20), particle_counts=(200, 2000)) -> FamilyTable:
     chapter 10, the particle filter injecting a share :data:`INJECTION` of random
     particles); and, the particle filter only, a lap from a start spread over the whole
     map (the EKF and UKF start at the true pose).  A lap that ends localized keeps its
-    error under 0.5 m over its last quarter (:meth:`~kfcourse.sim.ParticleRun.localized`).
+    error under 0.5 m over its last quarter (:func:`~kfcourse.sim.localized`).
     The cost per step is the wall time of the laps; it is a figure of this machine, not a
     property of the filter.
 

@@ -7,11 +7,14 @@ draw the world of chapter 10's EKF and UKF for the same seed, and follows it wit
 - predict: every particle moves with its own noisy copy of the odometry, (1)-(2);
 - weight: by the likelihood of every reading in view, in log space, (3); no gate: a reading
   far from what the cloud expects drags no estimate through a gain, it only re-weighs the
-  particles, and after a kidnap it is the reading that finds the robot;
+  particles, and after a kidnap it is the reading that finds the robot.  With unlabelled
+  readings, a reading may come from any landmark of the map, (3');
 - normalise (4), and the effective sample size (5);
 - resample (6) when :math:`N_{\text{eff}} < N/2`;
 - injection (8), when asked for, just after resampling;
 - the estimate (7), from the weighted cloud before resampling.
+
+:func:`localized` says whether a run, of this filter or of any other, has found the robot.
 """
 
 from __future__ import annotations
@@ -64,6 +67,7 @@ class ParticleRun(Record):
     visible: np.ndarray  #: (T, L) bool: the readings of step k, every one of them used
     start: np.ndarray  #: (3,) the true pose before the first step
     bounds: np.ndarray | None  #: (2, 2) [[x_min, x_max], [y_min, y_max]]: the map's box (global start, injection)
+    starts: np.ndarray | None  #: (K, 3) the poses the cloud started around, each as likely; None: a global start
     particles: np.ndarray  #: (T, N, 3) float32: the cloud after the prediction of step k, as it was weighed
     w: np.ndarray  #: (T, N) float32: its normalised weights, before resampling
     ess: np.ndarray  #: (T,) effective sample size of w[k], from 1 to N
@@ -77,6 +81,7 @@ class ParticleRun(Record):
     n_particles: int  #: N
     resample: str  #: "multinomial", "stratified" or "systematic"
     global_start: bool  #: the cloud started uniform over the map's box and every heading
+    labelled: bool  #: each reading came with its landmark (False: it may be any landmark of the map)
     kidnap: int | None  #: step at which the true robot was carried half a lap further on
     injection: float | str  #: share of the particles replaced after each resampling, or "augmented"
     dropout: tuple[int, int] | None  #: the sensor is blind for steps t0 <= k < t1
@@ -91,9 +96,32 @@ class ParticleRun(Record):
         return float(self.inside.mean())
 
     def localized(self, bound: float = LOCALIZED) -> bool:
-        """Whether the error stays under ``bound`` (m) at every step of the last quarter lap."""
-        quarter = len(self.t) // self.laps // 4
-        return bool((self.error[-quarter:] < bound).all())
+        """Whether the error stays under ``bound`` (m) at every step of the last quarter lap: :func:`localized`."""
+        return localized(self, bound)
+
+
+def localized(run, bound: float = LOCALIZED) -> bool:
+    """Whether a run has found the robot: its error stays under ``bound`` at every step of the last quarter lap.
+
+    The same test for every filter: ``run`` is any run record with the error of each step,
+    ``error`` (T,), and its times ``t``; where it has ``laps`` (a run of several laps), the
+    quarter is a quarter of one lap.  Introduced in chapter 11.
+
+    Parameters
+    ----------
+    run : ParticleRun or LoopRun
+        A run of the loop.
+    bound : float
+        The largest error still localized (m), > 0; by default :data:`LOCALIZED`.
+
+    Returns
+    -------
+    bool
+    """
+    bound = v.positive(bound, "bound", "an error", "m")
+    T = len(run.t)
+    quarter = max(1, T // getattr(run, "laps", 1) // 4)  # steps in a quarter lap, at least the last one
+    return bool((np.asarray(run.error)[T - quarter :] < bound).all())
 
 
 def _map_box(landmarks: np.ndarray) -> np.ndarray | None:
@@ -110,6 +138,8 @@ def particle_loop(
     n_particles: int = 2000,
     resample: str = "systematic",
     global_start: bool = False,
+    starts=None,
+    labelled: bool = True,
     kidnap: int | None = None,
     injection: float | str = 0.0,
     dropout=None,
@@ -148,6 +178,15 @@ def particle_loop(
         False: the cloud starts at the true start, spread by :data:`~kfcourse.sim.localization.SIG0`
         (as the EKF of chapter 10).  True: the start is unknown, and the cloud starts uniform over
         the map's bounding box and every heading.
+    starts : array_like, shape (K, 3), optional
+        The poses the robot may have started from, each as likely (one of K docks): the cloud
+        starts as N particles split as evenly as possible among them, each group spread by
+        :data:`~kfcourse.sim.localization.SIG0` around its pose.  By default the true start alone.
+        Not with ``global_start``.
+    labelled : bool
+        True: each reading comes with the landmark it came from, equation (3).  False: the
+        filter is not told, and a reading may come from any landmark of the map, equation (3').
+        On a map that looks the same from two poses, a global start then keeps both.
     kidnap : int, optional
         At this step the true robot is carried half a lap further on; the filter is not told.
     injection : float or "augmented"
@@ -181,6 +220,13 @@ def particle_loop(
     if not isinstance(resample, str) or resample not in RESAMPLERS:
         raise ValueError(f"resample must be one of {tuple(RESAMPLERS)}, got {resample!r}")
     global_start = v.flag(global_start, "global_start")
+    if starts is not None:
+        if global_start:
+            raise ValueError("starts must be None with global_start=True: a global start knows no poses")
+        starts = v.matrix(starts, "starts", cols=3)
+        if len(starts) == 0:
+            raise ValueError("starts must hold at least one pose [x, y, theta], got none")
+    labelled = v.flag(labelled, "labelled")
     augmented = isinstance(injection, str) and injection == "augmented"
     if isinstance(injection, bool | np.bool_) or (isinstance(injection, str) and not augmented):
         raise ValueError(f"injection must be a share from 0 to 1 or 'augmented', got {injection!r}")
@@ -198,9 +244,12 @@ def particle_loop(
 
     T = len(world.t)
     if global_start:  # the start unknown: anywhere in the map's box, any heading
-        x = inject_random(np.zeros((N, 3)), 1.0, box, rng)
-    else:  # the start known, as chapter 10's filters know it
-        x = world.start + rng.multivariate_normal(np.zeros(3), SIG0, size=N)
+        starts, x = None, inject_random(np.zeros((N, 3)), 1.0, box, rng)
+    else:  # one of K known poses (chapter 10's filters know the true one): N/K particles round each
+        starts = world.start[None] if starts is None else starts
+        K = len(starts)
+        groups = np.repeat(starts, N // K + (np.arange(K) < N % K), axis=0)  # N rows, as even as can be
+        x = groups + rng.multivariate_normal(np.zeros(3), SIG0, size=N)
     cloud, weights = np.empty((T, N, 3), dtype=np.float32), np.empty((T, N), dtype=np.float32)
     ess, resampled, injected = np.empty(T), np.zeros(T, dtype=bool), np.zeros(T, dtype=int)
     mu, Sig = np.empty((T, 3)), np.empty((T, 3, 3))
@@ -209,7 +258,8 @@ def particle_loop(
     for k in range(T):
         x = pf_predict(x, world.odometry[k], world.dt, M, rng)  # (1)-(2)
         seen, before = world.visible[k], log_w
-        log_w = pf_weight(x, world.z[k, seen], world.landmarks[seen], Q, log_w)  # (3)
+        marks = world.landmarks[seen] if labelled else world.landmarks  # each reading's landmark, or the whole map
+        log_w = pf_weight(x, world.z[k, seen], marks, Q, log_w, labelled)  # (3), unlabelled (3')
         if augmented and seen.any():  # the readings' average likelihood sum_i w_i p(z | x_i), per reading
             fit = np.exp((np.logaddexp.reduce(log_w) - np.logaddexp.reduce(before)) / seen.sum())
             w_slow = fit if w_slow is None else w_slow + ALPHA_SLOW * (fit - w_slow)
@@ -239,6 +289,7 @@ def particle_loop(
         visible=world.visible,
         start=world.start,
         bounds=box,
+        starts=starts,
         particles=cloud,
         w=weights,
         ess=ess,
@@ -252,6 +303,7 @@ def particle_loop(
         n_particles=N,
         resample=resample,
         global_start=global_start,
+        labelled=labelled,
         kidnap=world.kidnap,
         injection=injection,
         dropout=world.dropout,

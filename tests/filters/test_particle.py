@@ -149,6 +149,83 @@ def test_weights_accumulate_and_no_reading_changes_nothing(rng):
     np.testing.assert_array_equal(kf.pf_weight(x, [], [], Q), np.zeros(100))
 
 
+# ---------------------------------------------------------------- unlabelled readings, equation (3')
+MAP = np.asarray(kf.sim.DEFAULT_LANDMARKS)  # chapter 10's map: point-symmetric about C
+C = np.array([0.0, 2.5])
+
+
+def mirror(pose):
+    """The pose turned half a turn about C: (x, y, theta) -> (2 c - (x, y), theta + pi)."""
+    pose = np.asarray(pose, float)
+    return np.array([*(2 * C - pose[:2]), kf.wrap_angle(pose[2] + np.pi)])
+
+
+def direct_mixture(particles, z, landmarks):
+    """The likelihood of every particle as a plain product over readings of (1/L) sum_m N(z_j - h_m(x); 0, Q)."""
+    like = np.ones(len(particles))
+    for z_j in z:
+        mix = sum(
+            kf.mvn_pdf(kf.models.range_bearing_residual(z_j, kf.range_bearing(particles, m)), np.zeros(2), Q)
+            for m in landmarks
+        )
+        like *= mix / len(landmarks)
+    return like
+
+
+def test_unlabelled_log_weights_are_the_log_of_the_direct_mixture_where_it_does_not_underflow(rng):
+    x = TRUE_POSE + rng.standard_normal((300, 3)) * [0.3, 0.3, 0.1]  # near the truth, and some far from it
+    z = readings(TRUE_POSE, LANDMARKS[:2], rng)
+    like = direct_mixture(x, z, LANDMARKS)
+    assert like.min() > 1e-250  # nothing underflows here
+    log_w = kf.pf_weight(x, z, LANDMARKS, Q, labelled=False)
+    np.testing.assert_allclose(log_w, np.log(like), rtol=1e-12, atol=1e-9)
+    labelled = kf.pf_weight(x, z, LANDMARKS[:2], Q)
+    assert not np.allclose(log_w, labelled)  # (3') is not (3): the mixture counts every landmark
+
+
+def test_one_landmark_on_the_map_makes_unlabelled_readings_labelled(rng):
+    x = cloud(rng, N=100)
+    m = LANDMARKS[:1]
+    z = readings(TRUE_POSE, m[[0, 0]], rng)  # two readings, both of the only landmark
+    np.testing.assert_allclose(
+        kf.pf_weight(x, z, m, Q, labelled=False), kf.pf_weight(x, z, m[[0, 0]], Q), rtol=1e-12, atol=1e-12
+    )
+
+
+def test_the_mirror_pose_weighs_as_much_as_the_true_pose_on_the_symmetric_map(rng):
+    """The map turned half a turn about C is the map: unlabelled, the readings cannot tell the two poses apart."""
+    np.testing.assert_allclose(np.sort(2 * C - MAP, axis=0), np.sort(MAP, axis=0), atol=1e-12)
+    for truth in ([0.2, 0.0, 0.0], [4.0, 2.6, 1.57], [-2.4, 5.0, -3.1]):
+        seen = MAP[np.linalg.norm(MAP - truth[:2], axis=1) < 4.0]
+        z = readings(truth, seen, rng)
+        x = np.array([truth, mirror(truth)])
+        log_w = kf.pf_weight(x, z, MAP, Q, labelled=False)
+        assert log_w[1] == pytest.approx(log_w[0], rel=1e-12, abs=1e-9)
+        labelled = kf.pf_weight(x, z, seen, Q)  # told which landmark it saw, the filter knows better
+        assert labelled[1] < labelled[0] - 100
+
+
+def test_a_particle_far_from_every_landmark_keeps_a_finite_unlabelled_log_weight(rng):
+    z = readings(TRUE_POSE, LANDMARKS, rng)
+    x = np.array([TRUE_POSE, [60.0, -40.0, 2.0], [-300.0, 500.0, -1.0]])
+    assert direct_mixture(x, z, LANDMARKS)[1:].max() == 0.0  # the plain mixture has lost them
+    log_w = kf.pf_weight(x, z, LANDMARKS, Q, labelled=False)
+    assert np.isfinite(log_w).all() and log_w[1] < log_w[0] - 1000
+    w = kf.normalise(log_w)
+    assert np.isfinite(w).all() and w[0] == pytest.approx(1.0)
+    assert np.isfinite(kf.pf_weight(x[1:], z, LANDMARKS, Q, labelled=False)).all()  # every particle far off
+
+
+def test_unlabelled_weights_accumulate_and_no_reading_changes_nothing(rng):
+    x = cloud(rng, N=100)
+    z = readings(TRUE_POSE, LANDMARKS, rng)
+    both = kf.pf_weight(x, z, MAP, Q, labelled=False)
+    first = kf.pf_weight(x, z[:1], MAP, Q, labelled=False)
+    np.testing.assert_allclose(kf.pf_weight(x, z[1:], MAP, Q, first, labelled=False), both, rtol=1e-12)
+    log_w = rng.standard_normal(100)
+    np.testing.assert_array_equal(kf.pf_weight(x, [], MAP, Q, log_w, labelled=False), log_w)
+
+
 def test_normalise_ignores_a_common_shift_and_gives_zero_to_minus_infinity():
     log_w = np.array([-1.0, -2.0, -np.inf, -3.0])
     w = kf.normalise(log_w)
@@ -374,6 +451,9 @@ BAD = [
     (lambda: kf.pf_weight(X3, [[1.0, 0.0]], [[1.0, 0.0]], np.diag([0.01, 0.0])), "Q must be positive definite"),
     (lambda: kf.pf_weight(X3, [[1.0, 0.0]], [[1.0, 0.0]], Q, np.zeros(3)), "log_w must have shape \\(4,\\)"),
     (lambda: kf.pf_weight(X3, [[1.0, 0.0]], [[1.0, 0.0]], Q, [0, np.nan, 0, 0]), "log_w must hold log-weights"),
+    (lambda: kf.pf_weight(X3, [[1.0, 0.0]], [[1.0, 0.0]], Q, labelled=0), "labelled must be True or False"),
+    (lambda: kf.pf_weight(X3, [[1.0, 0.0]], np.empty((0, 2)), Q, labelled=False), "landmarks must be the whole map"),
+    (lambda: kf.pf_weight(X3, [[1.0, 0.0]], [[1.0, 0.0, 0.0]], Q, labelled=False), "landmarks must have shape"),
     (lambda: kf.pf_estimate(X3, [0.5, 0.5]), "w must have shape \\(4,\\)"),
     (lambda: kf.pf_estimate(X3, [0.25, 0.25, np.nan, 0.25]), "w must be finite"),
     (lambda: kf.pf_estimate([[0.0, 0.0, np.nan]], [1.0]), "particles must be finite"),

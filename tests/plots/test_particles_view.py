@@ -7,10 +7,11 @@ from types import SimpleNamespace
 
 import numpy as np
 import pytest
+from matplotlib.figure import Figure
 
 import kfcourse as kf
 from kfcourse.filters.gaussian import ellipse_axes
-from kfcourse.plots.particles import RESAMPLE_LINE, cloud_view, update_cloud_view, weight_shades
+from kfcourse.plots.particles import DOT_SIZE, RESAMPLE_LINE, cloud_chart, cloud_view, update_cloud_view, weight_shades
 
 
 @pytest.fixture(scope="module")
@@ -80,3 +81,29 @@ def test_bad_step(run):
     view = cloud_view(SimpleNamespace(run=run, frame=0))
     with pytest.raises(ValueError, match="k must be"):
         update_cloud_view(view, SimpleNamespace(run=run, frame=run.t.size))
+
+
+@pytest.mark.parametrize("k", [5, None])
+def test_the_cloud_chart_is_the_picture_of_one_step(run, k):
+    fig = cloud_chart(run, k)
+    assert isinstance(fig, Figure)
+    step = run.t.size - 1 if k is None else k
+    ax = fig.axes[0]
+    clouds = [c for c in ax.collections if len(c.get_offsets()) == run.n_particles]
+    assert len(clouds) == 1
+    order, shade = weight_shades(run.w[step])
+    np.testing.assert_allclose(clouds[0].get_offsets(), run.particles[step, order, :2])
+    np.testing.assert_allclose(clouds[0].get_array(), shade)
+    np.testing.assert_allclose(ax.lines[2].get_xydata(), run.mu[: step + 1, :2])  # the estimate's trail to step k
+    with pytest.raises(ValueError, match="k must be"):
+        cloud_chart(run, run.t.size)
+    assert kf.plots.cloud_chart is cloud_chart
+
+
+def test_the_dots_take_the_size_asked_for(run):
+    small, large = cloud_chart(run, 5), cloud_chart(run, 5, dot_size=30.0)
+    sizes = [
+        next(c.get_sizes() for c in fig.axes[0].collections if len(c.get_offsets()) == run.n_particles)
+        for fig in (small, large)
+    ]
+    assert sizes[0][0] == DOT_SIZE and sizes[1][0] == 30.0

@@ -76,6 +76,10 @@ def test_a_small_table_and_its_seeds():
     small = kf.sim.family_table([3, 5], particle_counts=[50])
     assert list(small.scores) == ["EKF", "UKF", "PF 50"]
     assert small.scores["PF 50"].localized.shape == (2,)
+    from_anywhere = [kf.sim.localized(kf.sim.particle_loop(s, n_particles=50, global_start=True)) for s in (3, 5)]
+    np.testing.assert_array_equal(small.scores["PF 50"].localized, from_anywhere)  # the one test of "localized"
+    kidnapped = [kf.sim.landmark_loop(s, kidnap=60, gate=4.0) for s in (3, 5)]
+    np.testing.assert_array_equal(small.scores["EKF"].found, [kf.sim.localized(run) for run in kidnapped])
     assert "Seeds 3, 5 " in small.table()
     ekf = kf.sim.landmark_loop(5)
     assert small.scores["EKF"].error[1] == pytest.approx(ekf.error.mean())  # the same lap as chapter 10's

@@ -1,16 +1,19 @@
 """The particle filter on chapter 10's loop (chapter 11): its world, its record, and what it does over 20 seeds.
 
-"Localized" is :meth:`ParticleRun.localized`: the position error stays under 0.5 m at every step
-of the last quarter lap.  After a kidnap at step 60 of 122, that is found again within about
-32 steps (6.4 s) and kept until the lap ends.
+"Localized" is :func:`kfcourse.sim.localized` (and :meth:`ParticleRun.localized`): the position
+error stays under 0.5 m at every step of the last quarter lap.  After a kidnap at step 60 of 122,
+that is found again within about 32 steps (6.4 s) and kept until the lap ends.
 """
 
 from __future__ import annotations
+
+from types import SimpleNamespace
 
 import numpy as np
 import pytest
 
 import kfcourse as kf
+from kfcourse.sim.localization import BEARING_STD, RANGE_STD
 
 SEEDS = range(20)
 KIDNAP = 60  # the kidnap of chapter 10
@@ -60,7 +63,21 @@ def test_record_is_consistent_and_read_only():
     np.testing.assert_allclose(run.error, np.linalg.norm(run.truth[:, :2] - run.mu[:, :2], axis=1))
     with pytest.raises(ValueError):
         run.particles[0, 0, 0] = 1.0
-    assert (run.n_particles, run.resample, run.seed, run.laps) == (N, "systematic", 0, 1)
+    assert (run.n_particles, run.resample, run.seed, run.laps, run.labelled) == (N, "systematic", 0, 1, True)
+
+
+def test_the_start_is_one_of_the_poses_given():
+    start = kf.sim.loop_world(3).start
+    a, b = kf.sim.particle_loop(3, n_particles=200), kf.sim.particle_loop(3, n_particles=200, starts=[start])
+    np.testing.assert_array_equal(a.particles, b.particles)  # the true start alone: the known start, draw for draw
+    np.testing.assert_array_equal(a.starts, [start])
+    assert kf.sim.particle_loop(3, n_particles=200, global_start=True).starts is None
+    docks = np.array([[0.0, 0.0, 0.0], [3.0, 6.0, 1.0], [-4.0, 1.0, -2.0]])
+    run = kf.sim.particle_loop(3, n_particles=200, starts=docks)
+    np.testing.assert_array_equal(run.starts, docks)
+    nearest = np.linalg.norm(run.particles[0, :, None, :2] - docks[None, :, :2], axis=2).argmin(axis=1)
+    assert np.bincount(nearest, minlength=3).tolist() == [67, 67, 66]  # split as evenly as can be
+    assert np.linalg.norm(run.particles[0, :, :2] - docks[nearest, :2], axis=1).max() < 1.0  # each spread by SIG0
 
 
 def test_seeded():
@@ -117,6 +134,46 @@ def test_augmented_mcl_finds_a_kidnapped_robot_and_injects_little_while_it_is_no
     assert calm.injected.sum() < 0.1 * runs[0].injected.sum()  # the kidnap sets it injecting, a calm lap hardly
 
 
+def test_unlabelled_readings_are_weighed_with_the_whole_map():
+    run = kf.sim.particle_loop(2, n_particles=300, global_start=True, labelled=False)
+    assert run.labelled is False
+    z, Q = run.z[0, run.visible[0]], run_q(run)  # step 0: the cloud spread over the map, weighed by its readings
+    unlabelled = kf.normalise(kf.pf_weight(run.particles[0], z, run.landmarks, Q, labelled=False))
+    labelled = kf.normalise(kf.pf_weight(run.particles[0], z, run.landmarks[run.visible[0]], Q))
+    np.testing.assert_allclose(run.w[0], unlabelled, atol=1e-4)  # the cloud is kept in float32
+    assert np.abs(unlabelled - labelled).max() > 0.01
+    # on a map of one landmark an unlabelled reading is a labelled one: the same run, draw for draw
+    one = {"landmarks": [[2.0, -1.5]], "n_particles": 200}
+    a, b = kf.sim.particle_loop(4, **one), kf.sim.particle_loop(4, labelled=False, **one)
+    assert a.visible.any()
+    np.testing.assert_allclose(b.mu, a.mu, rtol=0, atol=1e-9)
+
+
+def run_q(run):
+    """The filter's reading noise Q of a run."""
+    return np.diag([run.sensor_noise * RANGE_STD, run.sensor_noise * BEARING_STD]) ** 2
+
+
+def test_localized_is_one_test_for_every_filter():
+    pf = kf.sim.particle_loop(0, n_particles=300)
+    assert kf.sim.localized(pf) is pf.localized() is True
+    error = pf.error.copy()
+    error[-30] = 0.6  # one step of the last quarter lap (30 of 122 steps) over the bound
+    assert not kf.sim.localized(SimpleNamespace(t=pf.t, error=error))
+    error[-30], error[-31] = 0.0, 0.6  # just before it: still localized
+    assert kf.sim.localized(SimpleNamespace(t=pf.t, error=error))
+    assert not kf.sim.localized(pf, bound=0.001) and kf.sim.localized(pf, bound=10.0)
+    ekf = kf.sim.landmark_loop(0)  # a Kalman filter's run, no laps field: one lap
+    assert kf.sim.localized(ekf) == bool((ekf.error[-30:] < kf.sim.particle.LOCALIZED).all())
+    two = kf.sim.particle_loop(0, n_particles=100, laps=2)  # the last quarter of one lap, not of both
+    assert kf.sim.localized(SimpleNamespace(t=two.t, error=two.error, laps=2)) == bool((two.error[-30:] < 0.5).all())
+    short = SimpleNamespace(t=np.arange(3.0), error=np.array([9.0, 9.0, 0.1]))  # shorter than 4 steps: the last
+    assert kf.sim.localized(short)
+    for bound in (0.0, -1.0, np.nan):
+        with pytest.raises(ValueError, match="bound"):
+            kf.sim.localized(pf, bound=bound)
+
+
 def test_extreme_settings_give_finite_runs():
     for settings in (
         {"n_particles": 1},
@@ -125,6 +182,10 @@ def test_extreme_settings_give_finite_runs():
         {"motion_noise": 100.0, "sensor_noise": 0.01, "global_start": True},
         {"dropout": (0, 122), "injection": 1.0},
         {"landmarks": np.empty((0, 2))},
+        {"landmarks": np.empty((0, 2)), "labelled": False},
+        {"n_particles": 1, "global_start": True, "labelled": False, "injection": "augmented"},
+        {"sensor_noise": 0.01, "global_start": True, "labelled": False},
+        {"n_particles": 1, "starts": [[0.0, 0.0, 0.0], [0.0, 5.0, np.pi]], "labelled": False},
     ):
         run = kf.sim.particle_loop(1, **settings)
         assert np.isfinite(run.mu).all() and np.isfinite(run.Sig).all() and np.isfinite(run.ess).all()
@@ -138,6 +199,7 @@ def test_extreme_settings_give_finite_runs():
         ({"n_particles": 10_001}, "n_particles"),
         ({"resample": "residual"}, "resample"),
         ({"global_start": 1}, "global_start"),
+        ({"labelled": "no"}, "labelled"),
         ({"injection": 1.5}, "injection"),
         ({"injection": True}, "injection"),
         ({"injection": "adaptive"}, "injection"),
@@ -147,6 +209,12 @@ def test_extreme_settings_give_finite_runs():
         ({"sensor_noise": 1e3}, "sensor_noise"),
         ({"seed": -1}, "seed"),
         ({"landmarks": [[0.0, -1.0], [1.0, -1.0]], "global_start": True}, "landmarks"),
+        ({"starts": [[0.0, 0.0, 0.0]], "global_start": True}, "starts"),
+        ({"starts": [[0.0, 0.0]]}, "starts"),
+        ({"starts": np.zeros((2, 3, 1))}, "starts"),
+        ({"starts": np.empty((0, 3))}, "starts"),
+        ({"starts": [[0.0, np.nan, 0.0]]}, "starts"),
+        ({"starts": "dock"}, "starts"),
     ],
 )
 def test_bad_arguments_are_named(settings, name):
