@@ -274,7 +274,8 @@ def _kind(x) -> str:
 
 def show(x, suppress_small: bool = True) -> str:
     """A short, readable text for an input or output value (inputs: ``suppress_small=False``, so
-    that a tiny input such as ω = 1e-15 does not print as 0)."""
+    that a tiny input such as ω = 1e-15 does not print as 0).  Integers (indices) and booleans
+    (flags) print as they are, not as floats."""
     if isinstance(x, Mapping):
         return "{" + ", ".join(f"{k!r}: {show(p, suppress_small)}" for k, p in x.items()) + "}"
     if x is None or isinstance(x, str):
@@ -283,8 +284,11 @@ def show(x, suppress_small: bool = True) -> str:
     if a is None or a.dtype == object:
         text = repr(x)
         return text if len(text) < 300 else text[:300] + " ..."
+    exact = np.asarray(x).dtype.kind in "biu"  # booleans, integers
+    if exact:
+        a = np.asarray(x)
     if a.ndim == 0:
-        return f"{float(a):.6g}"
+        return str(a.item()) if exact else f"{float(a):.6g}"
     return np.array2string(a, precision=6, suppress_small=suppress_small, separator=", ", max_line_width=100)
 
 

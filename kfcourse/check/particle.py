@@ -66,7 +66,9 @@ class PreparedDraws(np.random.Generator):
         return f"Generator({many} U = {self.first[0]!r})"
 
 
-def _resample_with(w, rng, *, offset="U", normalise=True, last_one=True, side="right", loop=False, returns="indices"):
+def _resample_with(
+    w, rng, *, offset="U", normalise=True, last_one=True, side="right", loop=False, clip=False, returns="indices"
+):
     """Chapter 11's systematic resampling written out, with a knob for each mistake."""
     w = np.asarray(w, dtype=float)
     N = len(w)
@@ -88,6 +90,8 @@ def _resample_with(w, rng, *, offset="U", normalise=True, last_one=True, side="r
             idx[k] = j
     else:
         idx = np.searchsorted(c, p, side=side)
+    if clip:  # an index past the end sent back to the last particle, whatever its weight
+        idx = np.minimum(idx, N - 1)
     if returns == "indices":
         return idx
     return {  # the right indices, handed back as something else
@@ -122,6 +126,14 @@ def _variants() -> list[Variant]:
         Variant("cumsum_not_one", with_(last_one=False, loop=True), "Dividing w by its sum is not enough. " + past_end),
         Variant("unnormalised_weights", with_(normalise=False, last_one=False), unnormalised),
         Variant("unnormalised_weights", with_(normalise=False, last_one=False, loop=True), unnormalised),
+        Variant(
+            "unnormalised_weights",
+            with_(normalise=False, last_one=False, clip=True),  # as a guard j < N - 1 in the walk, or c[-1] = 1, does
+            "Indices clipped at N − 1 instead of making the cumulative sum end at 1: a particle of weight 0 can be "
+            "drawn. np.minimum(idx, N − 1), a guard j < N − 1 in the walk, or c[-1] = 1 on weights that sum to 1 only "
+            "to 6 digits, hands every position past their sum to the last particle, whatever its weight. Divide the "
+            "cumulative sum by its last entry, c /= c[-1]: it ends at exactly 1 and each particle keeps its share.",
+        ),
         Variant("offset_not_divided", with_(offset="undivided"), undivided),
         Variant("offset_not_divided", with_(offset="undivided", loop=True), undivided),
         Variant(
@@ -199,8 +211,8 @@ def _cases(rng) -> list[Case]:
         case("U = 0: the positions on slice boundaries, a first weight of 0", [0.0, 0.25, 0.25, 0.5], 0.0),
         case("one particle, N = 1", [1.0], 0.4),
         case(
-            "weights that sum to 1 only to 6 digits: to 0.9999995, the last position past that",
-            [0.1, 0.2, 0.3, 0.3999995],
+            "weights that sum to 1 only to 6 digits: to 0.9999992, the last position past that",
+            [0.1, 0.2, 0.3, 0.3999992],
             0.999999,
             repeat=True,
         ),
@@ -208,6 +220,12 @@ def _cases(rng) -> list[Case]:
             "a cumulative sum that rounds below 1: to 0.9999999999999998, the last position at 0.9999999999999999",
             rounds_low,
             1 - 2.0**-50,  # (7 + U)/8 = 1 - 2^-53 exactly, however it is written
+            repeat=True,
+        ),
+        case(
+            "a last weight of 0, the sum short of 1: the last position past the sum, yet that particle never drawn",
+            [0.5, 0.4999992, 0.0],
+            0.999999,
             repeat=True,
         ),
     ]
@@ -244,9 +262,10 @@ def resample_systematic(student_fn, seed: int = 0) -> CheckResult:
 
     The cases: chapter 11's example (five weights, U = 0.9), then one case for each classic
     mistake (equal weights, one heavy particle, U = 0 with a weight of 0, N = 1, weights that sum
-    to 1 only to 6 digits, a cumulative sum that rounds below 1) and seeded clouds of 7 to 2 000
-    particles.  Each case hands your function and the package's the same prepared generator
-    (:class:`PreparedDraws`), whose first uniform draw is the case's U however it is asked for.
+    to 1 only to 6 digits, a cumulative sum that rounds below 1, a last weight of 0 and a sum
+    short of 1) and seeded clouds of 7 to 2 000 particles.  Each case hands your function and the
+    package's the same prepared generator (:class:`PreparedDraws`), whose first uniform draw is
+    the case's U however it is asked for.
     The indices are compared in ascending order (the new cloud does not depend on their order)
     and must be integers.  Stratified resampling (a new U_i for each position) is recognised and
     not called wrong: it is a right answer to another question.  Introduced in chapter 11.

@@ -1,6 +1,6 @@
 """Answers to chapter 11's exercise, systematic resampling, written the way a student might write
 them, independently of the checker's own wrong versions: right answers in other forms than the
-package's, one wrong answer (or two) per mistake of the checker's catalogue, and stratified
+package's, one wrong answer (or more) per mistake of the checker's catalogue, and stratified
 resampling, a right answer to another question.  ``tests/check/test_particle_check.py`` pairs
 each wrong answer with the mistake the checker must name.
 """
@@ -21,10 +21,10 @@ def resample_systematic(w, rng):
 
 
 def resample_walk(w, rng):
-    """One walk along the cumulative sum, its last entry set to 1."""
+    """One walk along the cumulative sum of the weights divided by their sum, its last entry set to 1."""
     N = len(w)
     positions = (rng.random() + np.arange(N)) / N
-    cumulative_sum = np.cumsum(w)
+    cumulative_sum = np.cumsum(w / np.sum(w))
     cumulative_sum[-1] = 1.0
     indexes = np.zeros(N, dtype=int)
     i, j = 0, 0
@@ -173,6 +173,42 @@ def cumsum_rounds_walk(w, rng):
     return np.array(indexes)
 
 
+def clipped_search(w, rng):
+    N = len(w)
+    positions = (rng.random() + np.arange(N)) / N
+    idx = np.searchsorted(np.cumsum(w), positions, side="right")
+    return np.minimum(idx, N - 1)  # wrong: a position past the sum goes to the last particle, even of weight 0
+
+
+def guarded_walk(w, rng):
+    N = len(w)
+    positions = (rng.random() + np.arange(N)) / N
+    c = np.cumsum(w)
+    indexes = np.zeros(N, dtype=int)
+    j = 0
+    for i in range(N):
+        while positions[i] >= c[j] and j < N - 1:  # wrong: the guard stops at the last particle, even of weight 0
+            j += 1
+        indexes[i] = j
+    return indexes
+
+
+def last_set_to_one(w, rng):
+    N = len(w)
+    positions = (rng.random() + np.arange(N)) / N
+    cumulative_sum = np.cumsum(w)
+    cumulative_sum[-1] = 1.0  # wrong: the weights' shortfall goes to the last particle, even of weight 0
+    indexes = np.zeros(N, dtype=int)
+    i, j = 0, 0
+    while i < N:
+        if positions[i] < cumulative_sum[j]:
+            indexes[i] = j
+            i += 1
+        else:
+            j += 1
+    return indexes
+
+
 def left_side(w, rng):
     N = len(w)
     positions = (rng.random() + np.arange(N)) / N
@@ -223,7 +259,7 @@ def float_indices(w, rng):
     N = len(w)
     positions = (rng.random() + np.arange(N)) / N
     c = np.cumsum(w)
-    c[-1] = 1.0
+    c /= c[-1]
     indexes = np.zeros(N)  # wrong: floats
     j = 0
     for i in range(N):

@@ -407,6 +407,21 @@ def test_the_verdict_displays_in_a_notebook():
     assert "✔" in ok._repr_html_() and repr(ok) == ok.message
 
 
+def test_integers_and_booleans_show_as_they_are_not_as_floats():
+    from kfcourse.check._core import show
+
+    assert show(np.array([1, 2, 2, 3])) == "[1, 2, 2, 3]"  # indices, not [1., 2., 2., 3.]
+    assert show(np.array([True, False])) == "[ True, False]"  # flags, not [1., 0.]
+    assert show(np.int64(7)) == "7" and show(np.True_) == "True" and show(1234567) == "1234567"
+    assert show(np.array([1.0, 2.0])) == "[1., 2.]" and show(0.1234567) == "0.123457"  # floats stay floats
+    assert show([1, 2.5]) == "[1. , 2.5]"  # an integer among floats is a float
+
+
+def test_a_verdict_shows_indices_as_integers():
+    details = kf.check.resample_systematic(lambda w, rng: kf.resample_systematic(w, rng) - 1).details
+    assert "indices = [1, 2, 2, 3, 4]" in details and "indices = [0, 1, 1, 2, 3]" in details, details
+
+
 def test_the_functions_of_the_unscented_transform_show_their_formula():
     result = kf.check.unscented_transform(answers.unscented_points_not_through_f)
     assert "f   = f(x) = x²" in result.details and " at 0x" not in result.message

@@ -8,6 +8,7 @@ The answers judged here are written the way a student might write them, in
 
 from __future__ import annotations
 
+import ast
 import copy
 
 import numpy as np
@@ -15,6 +16,7 @@ import pytest
 
 import kfcourse as kf
 from kfcourse.check import particle
+from kfcourse.check._core import show
 from tests.check import particle_answers as a
 
 RIGHT = [a.resample_systematic, a.resample_walk, a.resample_low_variance, a.resample_digitize]
@@ -31,6 +33,9 @@ WRONG = [
     (kf.resample_multinomial, "multinomial"),
     (a.unnormalised_search, "unnormalised_weights"),
     (a.unnormalised_walk, "unnormalised_weights"),
+    (a.clipped_search, "unnormalised_weights"),
+    (a.guarded_walk, "unnormalised_weights"),
+    (a.last_set_to_one, "unnormalised_weights"),
     (a.cumsum_rounds, "cumsum_not_one"),
     (a.cumsum_rounds_walk, "cumsum_not_one"),
     (a.left_side, "boundary_side"),
@@ -233,3 +238,26 @@ def test_each_case_does_what_its_label_says():
     for position in [(N - 1 + U) / N, U / N + (N - 1) / N, (N - 1) / N + U * (1 / N)]:
         assert position == 0.9999999999999999 == 1 - 2.0**-53
     assert low.call(kf.resample_systematic)[-1] == N - 1
+    # a last weight of 0 and a sum short of 1: the last position past the sum, the particle of weight 0 never drawn
+    zero = cases["a last weight of 0, the sum short of 1"]
+    w = zero.inputs["w"]
+    assert w[-1] == 0 and 0 < 1 - w.sum() <= 1e-6
+    last = (len(w) - 1 + copy.deepcopy(zero.inputs["rng"]).random()) / len(w)
+    assert w.sum() < last < 1
+    assert len(w) - 1 not in zero.call(kf.resample_systematic)
+    assert zero.call(a.clipped_search)[-1] == len(w) - 1
+
+
+@pytest.mark.parametrize("label", ["weights that sum to 1 only to 6 digits", "a last weight of 0, the sum short of 1"])
+def test_weights_short_of_1_look_short_of_1_as_printed(label):
+    w = {c.label.split(":")[0]: c for c in particle._cases(np.random.default_rng(0))}[label].inputs["w"]
+    printed = np.array(ast.literal_eval(show(w)))  # the inputs as the verdict prints them
+    assert printed.sum() < 1 - 5e-7, show(w)
+
+
+def test_a_clipped_index_is_named_as_such():
+    hint = kf.check.resample_systematic(a.clipped_search).hint
+    assert (
+        "Indices clipped at N − 1 instead of making the cumulative sum end at 1: a particle of weight 0 can be drawn"
+        in hint
+    )
