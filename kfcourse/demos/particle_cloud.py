@@ -17,6 +17,7 @@ COUNT_RANGE = (2.0, 4.0)  # log10 of the particle counts the slider reaches: 100
 INJECTION = 0.05  # share of the particles replaced by random poses after each resampling, when on
 IMAGE_WIDTH = 500  # CSS px at most: beside the column, within a laptop's 848 px
 COLUMN_WIDTH = 340  # CSS px: the controls and the readout beside the picture
+SCHEME_BUTTON = 106  # CSS px: one resampling scheme's button, its whole name readable ("multinomial")
 
 
 class CloudModel:
@@ -117,11 +118,11 @@ def _controls(model: CloudModel, kidnap: widgets.Button) -> dict:
     """
     lo, hi = COUNT_RANGE
     count = slider(widgets.FloatLogSlider, "particles", PARTICLES, lo, hi, 0.1, ".0f", False, base=10)
-    scheme = widgets.ToggleButtons(
+    scheme = widgets.ToggleButtons(  # the three resampling schemes, by name: room for the whole word in each
         options=list(RESAMPLERS),
         value=model.resample,
-        description="resample",
-        style={"button_width": "84px", "description_width": "60px"},
+        tooltips=[f"Resample with the {name} scheme" for name in RESAMPLERS],
+        style={"button_width": f"{SCHEME_BUTTON}px"},
     )
     start = widgets.ToggleButton(
         description="Global start", icon="globe", tooltip="Start anywhere on the map", layout={"width": "120px"}
