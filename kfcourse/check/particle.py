@@ -109,7 +109,7 @@ def _variants() -> list[Variant]:
 
     offset = "The positions are p_i = (i + U)/N with one U ~ U[0, 1) (rng.random()), so p_0 = U/N lies in [0, 1/N)."
     past_end = (
-        "The cumulative sum must end at exactly 1: divide it by its last entry, c /= c[-1] (or set c[-1] = 1), "
+        "The cumulative sum must end at exactly 1: divide it by its last entry, c /= c[-1], "
         "or the last position may fall past it and its index run past the end."
     )
     unnormalised = (
