@@ -10,9 +10,9 @@ with the chapter's equation numbers:
     (3)\ \ell^{[i]} \mathrel{+}= \textstyle\sum_j \log \mathcal N(\nu_j^{[i]}; 0, Q),\
          \nu_j^{[i]} = [z_j - h_j(\bar x^{[i]})]_{\text{wrapped}}
 
-    (3')\ \ell^{[i]} \mathrel{+}= \textstyle\sum_j \log \frac1L \sum_{m=1}^{L} \mathcal N(\nu_{jm}^{[i]}; 0, Q),\
-         \nu_{jm}^{[i]} = [z_j - h_m(\bar x^{[i]})]_{\text{wrapped}}
-         \quad (\text{unlabelled readings: any of the map's } L \text{ landmarks})
+    (3')\ \ell^{[i]} \mathrel{+}= \textstyle\sum_j \log \frac1J \sum_{j'=1}^{J} \mathcal N(\nu_{jj'}^{[i]}; 0, Q),\
+         \nu_{jj'}^{[i]} = [z_j - h_{j'}(\bar x^{[i]})]_{\text{wrapped}}
+         \quad (\text{unlabelled readings: any of the map's } J \text{ landmarks})
 
     (4)\ w^{[i]} = \frac{e^{\ell^{[i]} - \ell_{\max}}}{\sum_k e^{\ell^{[k]} - \ell_{\max}}} \qquad
     (5)\ N_{\text{eff}} = 1 / \textstyle\sum_i (w^{[i]})^2 \qquad
@@ -148,12 +148,12 @@ def pf_weight(particles, z, landmarks, Q, log_w=None, labelled: bool = True) -> 
     log-weights into weights.
 
     Unlabelled readings (``labelled=False``): the sensor does not say which landmark it saw, so
-    a reading may come from any of the map's L landmarks, each as likely a priori (Thrun's
+    a reading may come from any of the map's J landmarks, each as likely a priori (Thrun's
     unknown correspondence).  Its likelihood is the mixture over the map, equation (3'):
 
-    .. math:: \ell^{[i]} \leftarrow \ell^{[i]} + \sum_j \log \frac1L \sum_{m=1}^{L}
-              \mathcal N(\nu_{jm}^{[i]}; 0, Q), \qquad
-              \nu_{jm}^{[i]} = [z_j - h_m(\bar x^{[i]})]_{\text{bearing wrapped}}
+    .. math:: \ell^{[i]} \leftarrow \ell^{[i]} + \sum_j \log \frac1J \sum_{j'=1}^{J}
+              \mathcal N(\nu_{jj'}^{[i]}; 0, Q), \qquad
+              \nu_{jj'}^{[i]} = [z_j - h_{j'}(\bar x^{[i]})]_{\text{bearing wrapped}}
 
     The inner sum is taken by the log-sum-exp trick of (4), so it never underflows: a particle
     far from every landmark keeps a finite log-weight.  On a map that looks the same from two
@@ -165,9 +165,9 @@ def pf_weight(particles, z, landmarks, Q, log_w=None, labelled: bool = True) -> 
         Poses ``[x, y, theta]``, one a row.
     z : array_like, shape (k, 2)
         Readings ``[r, phi]`` (m, rad); k may be 0 (then the weights do not change).
-    landmarks : array_like, shape (k, 2) or (L, 2)
+    landmarks : array_like, shape (k, 2) or (J, 2)
         Labelled: the landmark of each reading, row j the landmark of ``z[j]``.
-        Unlabelled: the whole map, L >= 1 landmarks (any L, whatever k).
+        Unlabelled: the whole map, J >= 1 landmarks (any J, whatever k).
     Q : array_like, shape (2, 2)
         Covariance of the reading noise, positive definite.
     log_w : array_like, shape (N,), optional
@@ -187,7 +187,7 @@ def pf_weight(particles, z, landmarks, Q, log_w=None, labelled: bool = True) -> 
     labelled = v.flag(labelled, "labelled")
     landmarks = _pairs(landmarks, "landmarks", z.shape[0] if labelled else None)
     if not labelled and len(z) > 0 and len(landmarks) == 0:
-        raise ValueError("landmarks must be the whole map, shape (L, 2) with L >= 1, for unlabelled readings")
+        raise ValueError("landmarks must be the whole map, shape (J, 2) with J >= 1, for unlabelled readings")
     Q = v.covariance(Q, "Q", 2)
     sign, logdet = np.linalg.slogdet(2.0 * np.pi * Q)
     if sign <= 0:
@@ -202,13 +202,13 @@ def pf_weight(particles, z, landmarks, Q, log_w=None, labelled: bool = True) -> 
         return log_w
     if len(z) == 0:
         return log_w  # no reading: the weights do not change
-    L, N = len(landmarks), len(x)
-    h = np.vstack([range_bearing(x, m) for m in landmarks])  # h_m(x) of every landmark m, every particle: (L N, 2)
+    J, N = len(landmarks), len(x)
+    h = np.vstack([range_bearing(x, m) for m in landmarks])  # h_j'(x) of every landmark j', every particle: (J N, 2)
     for z_j in z:  # one reading at a time, every landmark it may come from, every particle at once
-        nu = range_bearing_residual(z_j, h)  # nu_jm = z_j - h_m(x), bearing wrapped: (L N, 2)
-        log_p = -0.5 * (np.sum(nu @ Q_inv * nu, axis=1) + logdet).reshape(L, N)  # log N(nu_jm; 0, Q): row m
+        nu = range_bearing_residual(z_j, h)  # nu_jj' = z_j - h_j'(x), bearing wrapped: (J N, 2)
+        log_p = -0.5 * (np.sum(nu @ Q_inv * nu, axis=1) + logdet).reshape(J, N)  # log N(nu_jj'; 0, Q): row j'
         top = log_p.max(axis=0)  # the likeliest landmark for each particle: e^(log_p - top) <= 1, one of them 1
-        log_w = log_w + top + np.log(np.exp(log_p - top).sum(axis=0) / L)  # (3') log (1/L) sum_m N(nu_jm; 0, Q)
+        log_w = log_w + top + np.log(np.exp(log_p - top).sum(axis=0) / J)  # (3') log (1/J) sum_j' N(nu_jj'; 0, Q)
     return log_w
 
 

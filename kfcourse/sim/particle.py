@@ -186,7 +186,9 @@ def particle_loop(
     labelled : bool
         True: each reading comes with the landmark it came from, equation (3).  False: the
         filter is not told, and a reading may come from any landmark of the map, equation (3').
-        On a map that looks the same from two poses, a global start then keeps both.
+        On a map that looks the same from two poses the belief then has two equal peaks; the
+        cloud keeps both only where it holds particles at both (``starts``), while a global start
+        keeps one, by luck (chapter 11).
     kidnap : int, optional
         At this step the true robot is carried half a lap further on; the filter is not told.
     injection : float or "augmented"
