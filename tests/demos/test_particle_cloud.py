@@ -18,11 +18,10 @@ from kfcourse.demos.particle_cloud import (
     INJECTION,
     PARTICLES,
     SCHEME_BUTTON,
-    CloudModel,
 )
 from tests.demos.layout import readout
+from tests.demos.particle_drive import model_with
 
-SEEDS = range(20)
 LAPTOP_PX = 680  # a 1280x800 laptop: picture and controls (caption aside) within 680 px
 
 
@@ -45,15 +44,6 @@ def assert_run_matches(model):
     expected = expected_run(model)
     np.testing.assert_array_equal(model.run.mu, expected.mu)
     np.testing.assert_array_equal(model.run.particles[model.frame], expected.particles[model.frame])
-
-
-def model_with(seed, **settings) -> CloudModel:
-    """The demo's model with the settings a student would pick, rerun once."""
-    model = CloudModel(seed)
-    for key, value in settings.items():
-        setattr(model, key, value)
-    model._rerun()
-    return model
 
 
 # --------------------------------------------------------------------------- controls

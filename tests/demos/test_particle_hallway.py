@@ -12,14 +12,7 @@ import kfcourse as kf
 from kfcourse.demos.particle_hallway import N_MAX, N_MIN, ParticleHallwayModel
 from kfcourse.plots.particle_hallway import particle_hallway_view, update_particle_hallway
 from kfcourse.sim.particle_hallway import simulate_particle_hallway
-
-SEEDS = range(20)
-
-
-def presses(model, cycles: int) -> None:
-    for _ in range(cycles):
-        model.predict()
-        model.update()
+from tests.demos.particle_drive import presses
 
 
 def test_model_replays_the_run_record():

@@ -10,26 +10,11 @@ from __future__ import annotations
 import numpy as np
 import pytest
 
-from kfcourse.demos.particle_cloud import FIRST_FRAME, CloudModel
+from kfcourse.demos.particle_cloud import FIRST_FRAME
 from kfcourse.demos.particle_hallway import ParticleHallwayModel
+from tests.demos.particle_drive import model_with, presses
 
 SEEDS = range(20)
-
-
-def presses(model, cycles: int) -> None:
-    """Press Predict, then Update, ``cycles`` times."""
-    for _ in range(cycles):
-        model.predict()
-        model.update()
-
-
-def model_with(seed, **settings) -> CloudModel:
-    """The cloud demo's model with the settings a student would pick, rerun once."""
-    model = CloudModel(seed)
-    for key, value in settings.items():
-        setattr(model, key, value)
-    model._rerun()
-    return model
 
 
 # --------------------------------------------------------------------------- the hallway
