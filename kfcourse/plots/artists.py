@@ -14,15 +14,20 @@ from ..filters.gaussian import ellipse_axes, gaussian_pdf
 from . import palette
 
 
-def gaussian_curve(ax, x, mu: float, var: float, color: str, label: str | None = None, fill: bool = True):
+def gaussian_curve(
+    ax, x, mu: float, var: float, color: str, label: str | None = None, fill: bool = True, ls: str | None = None
+):
     """Draw the density of ``N(mu, var)`` over the grid ``x``.
+
+    The line takes the style of the role whose colour it has (a prediction dashed, a
+    measurement dash-dot, an estimate solid: :func:`palette.line_style`) unless ``ls`` is given.
 
     Returns
     -------
     (line, fill) : the Line2D and the shaded PolyCollection (``None`` without fill)
     """
     y = gaussian_pdf(x, mu, var)
-    (line,) = ax.plot(x, y, color=color, lw=2.2, label=label)
+    (line,) = ax.plot(x, y, color=color, lw=2.2, ls=palette.line_style(color) if ls is None else ls, label=label)
     shade = ax.fill_between(x, y, color=color, alpha=0.15, lw=0) if fill else None
     return line, shade
 
@@ -40,9 +45,13 @@ def update_gaussian_curve(curve, mu: float, var: float) -> np.ndarray:
 
 
 def covariance_ellipse(ax, mu, Sig, nsig: float = 1.0, color: str = palette.ESTIMATE, **kwargs) -> Ellipse:
-    """The ``nsig``-sigma contour of ``N(mu, Sig)`` (2-D) as an Ellipse patch."""
+    """The ``nsig``-sigma contour of ``N(mu, Sig)`` (2-D) as an Ellipse patch.
+
+    Drawn in the line style of the role whose colour it has (a prediction dashed, an
+    estimate solid: :func:`palette.line_style`) unless ``ls`` is among ``kwargs``.
+    """
     w, h, angle = ellipse_axes(Sig, nsig)
-    style = {"fill": False, "lw": 2.0, "edgecolor": color} | kwargs
+    style = {"fill": False, "lw": 2.0, "edgecolor": color, "ls": palette.line_style(color)} | kwargs
     patch = Ellipse(tuple(np.asarray(mu, float)[:2]), w, h, angle=angle, **style)
     patch._kf_nsig = nsig
     ax.add_patch(patch)
@@ -88,8 +97,8 @@ def gain_gauge(ax, K: float = 0.0):
     ax.add_patch(Rectangle((0, 0.25), 1, 0.5, color=palette.GRID, lw=0))
     bar = Rectangle((0, 0.25), K, 0.5, color=palette.ESTIMATE, lw=0)
     ax.add_patch(bar)
-    ax.text(0, 1.0, "trust prediction", color=palette.PREDICTION, ha="left", va="bottom", fontsize=9)
-    ax.text(1, 1.0, "trust measurement", color=palette.MEASUREMENT, ha="right", va="bottom", fontsize=9)
+    ax.text(0, 1.0, "trust prediction", color=palette.PREDICTION_TEXT, ha="left", va="bottom", fontsize=9)
+    ax.text(1, 1.0, "trust measurement", color=palette.MEASUREMENT_TEXT, ha="right", va="bottom", fontsize=9)
     text = ax.text(0.5, 1.0, "", ha="center", va="bottom", fontsize=10, weight="bold", color=palette.INK)
     update_gain_gauge((bar, text), K)
     return bar, text

@@ -114,7 +114,7 @@ def blend_variance_chart(var1: float, var2: float):
     ax.plot(w, var_blend, color=palette.INK, lw=1.8, label="variance of the blend")
     ax.plot([0.0], [var1], "o", color=palette.PREDICTION, ms=8, label=f"w = 0: prediction only, {var1:.3g}")
     ax.plot([1.0], [var2], "o", color=palette.MEASUREMENT, ms=8, label=f"w = 1: measurement only, {var2:.3g}")
-    ax.axvline(K, color=palette.ESTIMATE, ls="--", lw=1.2)
+    ax.axvline(K, color=palette.ESTIMATE, ls=palette.ESTIMATE_LINE, lw=1.0)
     ax.plot([K], [var_min], "o", color=palette.ESTIMATE, ms=9, label=f"minimum at w = K = {K:.3f}: {var_min:.3g}")
     ax.set_xlim(-0.03, 1.03)
     ax.set_ylim(0, 1.08 * max(var1, var2))

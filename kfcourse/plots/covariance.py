@@ -80,7 +80,7 @@ def covariance_view(sigmas=(1, 2, 3)) -> CovarianceView:
         covariance_ellipse(ax, (0, 0), eye, k, palette.ESTIMATE, lw=2.4 - 0.6 * i, alpha=1.0 - 0.25 * i)
         for i, k in enumerate(sigmas)
     )
-    labels = tuple(ax.text(0, 0, f"{k}σ", color=palette.ESTIMATE, fontsize=9, weight="bold") for k in sigmas)
+    labels = tuple(ax.text(0, 0, f"{k}σ", color=palette.ESTIMATE_TEXT, fontsize=9, weight="bold") for k in sigmas)
     (shadow,) = ax.plot([], [], "--", color=palette.INK, lw=1.0, label="1σ shadow: ±σx, ±σy")
     ax_text.legend(handles=[shadow], loc="lower left", fontsize=8)  # beside the plot: never over a contour
     info = ax_text.text(

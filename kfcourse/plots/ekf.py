@@ -71,7 +71,7 @@ def jacobian_runs_chart(right, wrong, every: int = 12):
         raise ValueError(f"every must be a whole number >= 1, got {every}")
     fig, (ax_a, ax_b, ax_e) = new_figure(11.0, 3.8, ncols=3, gridspec_kw={"width_ratios": [1, 1, 1.1]})
     for ax, run, name in ((ax_a, right, "right H"), (ax_b, wrong, "flipped bearing row")):
-        ax.plot(run.truth[:, 0], run.truth[:, 1], color=palette.TRUTH, lw=2.5, label="truth")
+        ax.plot(run.truth[:, 0], run.truth[:, 1], color=palette.TRUTH, ls=palette.TRUTH_LINE, lw=2.5, label="truth")
         ax.plot(run.mu[:, 0], run.mu[:, 1], color=palette.ESTIMATE, lw=1.5, label="EKF estimate")
         for k in range(0, run.t.size, every):
             covariance_ellipse(ax, run.mu[k, :2], run.Sig[k, :2, :2], nsig=3.0, lw=1.0)
@@ -151,8 +151,8 @@ class LinearizationView:
     input_density: Line2D  #: N(m, s²), purple
     sampled: Line2D  #: histogram of the true output, grey
     ekf: Line2D  #: the EKF's output Gaussian, teal
-    sampled_mean: Line2D  #: dotted grey
-    ekf_mean: Line2D  #: dotted teal
+    sampled_mean: Line2D  #: dotted grey (the truth's style)
+    ekf_mean: Line2D  #: thin solid teal
     info: Text  #: the numbers
 
     @property
@@ -207,12 +207,16 @@ def linearization_view(
     (tangent,) = ax_f.plot(x, x, color=palette.ESTIMATE, lw=1.8, ls="--", label="EKF: tangent at m")
     (point,) = ax_f.plot([0], [0], "o", color=palette.ESTIMATE, ms=6)
     ax_f.legend(loc="upper center", fontsize=9)  # the middle top: clear of every curve's arms
-    (density,) = ax_in.plot(x, x, color=palette.PREDICTION, lw=2)
-    (sampled,) = ax_out.plot([0, 1], [0, 1], color=palette.TRUTH, lw=1.5, label="sampled")
-    (ekf,) = ax_out.plot([0, 1], [0, 1], color=palette.ESTIMATE, lw=2, label="EKF")
-    across = {"transform": ax_out.get_yaxis_transform(), "lw": 1.2, "ls": ":"}  # x from edge to edge of the panel
-    (sampled_mean,) = ax_out.plot([0, 1], [0, 0], color=palette.TRUTH, **across)
-    (ekf_mean,) = ax_out.plot([0, 1], [0, 0], color=palette.ESTIMATE, **across)
+    (density,) = ax_in.plot(x, x, color=palette.PREDICTION, ls=palette.PREDICTION_LINE, lw=2)
+    (sampled,) = ax_out.plot(
+        [0, 1], [0, 1], color=palette.TRUTH, ls=palette.TRUTH_LINE, lw=palette.TRUTH_WIDTH, label="sampled"
+    )
+    (ekf,) = ax_out.plot([0, 1], [0, 1], color=palette.ESTIMATE, ls=palette.ESTIMATE_LINE, lw=2, label="EKF")
+    across = {"transform": ax_out.get_yaxis_transform()}  # x from edge to edge of the panel
+    (sampled_mean,) = ax_out.plot(
+        [0, 1], [0, 0], color=palette.TRUTH, ls=palette.TRUTH_LINE, lw=palette.TRUTH_WIDTH, **across
+    )
+    (ekf_mean,) = ax_out.plot([0, 1], [0, 0], color=palette.ESTIMATE, ls=palette.ESTIMATE_LINE, lw=1.0, **across)
     ax_out.legend(loc="lower center", bbox_to_anchor=(0.5, 1.0), ncol=2, fontsize=8)  # above: no density reaches it
     info = panels.ax_txt.text(
         -0.1, 0.95, "", transform=panels.ax_txt.transAxes, ha="left", va="top", fontsize=8.5, family="monospace"

@@ -136,7 +136,7 @@ def _robots(ax, scan, size: float) -> tuple[Polygon, Ellipse]:
     estimate (teal, returned with its 2-sigma ellipse: the update moves them)."""
     robot(ax, scan.mu_bar, color=palette.PREDICTION, size=size, alpha=0.6, zorder=3)
     covariance_ellipse(ax, scan.mu_bar, scan.Sig_bar[:2, :2], nsig=2.0, color=palette.PREDICTION, lw=1.5)
-    robot(ax, scan.truth, color=palette.TRUTH, size=size, facecolor="none", lw=1.5, ls=(0, (1.5, 1)), zorder=4)
+    robot(ax, scan.truth, color=palette.TRUTH, size=size, facecolor="none", lw=1.5, ls=palette.TRUTH_LINE, zorder=4)
     estimate = robot(ax, scan.mu_bar, color=palette.ESTIMATE, size=size, alpha=0.9, zorder=5)
     halo = [patheffects.withStroke(linewidth=3.5, foreground="white")]  # shows on the teal robot too
     ellipse = covariance_ellipse(ax, scan.mu_bar, scan.Sig_bar[:2, :2], nsig=2.0, lw=1.6, path_effects=halo)
@@ -187,7 +187,7 @@ def association_view(model) -> AssociationView:
     links = lines(colors=palette.MEASUREMENT, lw=1.2, alpha=0.9, zorder=3)
     used = ax.scatter([], [], s=40, color=palette.MEASUREMENT, zorder=4)
     unused = ax.scatter([], [], s=60, facecolors="white", edgecolors=palette.MEASUREMENT, linewidths=2.0, zorder=4)
-    leg_label = ax.text(0, 0, "leg", color=palette.MEASUREMENT, fontsize=9, ha="left", va="bottom", zorder=5)
+    leg_label = ax.text(0, 0, "leg", color=palette.MEASUREMENT_TEXT, fontsize=9, ha="left", va="bottom", zorder=5)
     view = AssociationView(
         fig, close_up, gates, beams, links, used, unused, leg_label, estimate, ellipse, close_estimate, close_ellipse
     )
@@ -295,7 +295,7 @@ def wrap_runs_chart(wrapped, unwrapped):
     fig, (ax_a, ax_b, ax_e) = new_figure(11.0, 3.9, ncols=3, gridspec_kw={"width_ratios": [1, 1, 1.1]})
     parted = np.flatnonzero(np.any(np.asarray(wrapped.mu) != np.asarray(unwrapped.mu), axis=1))
     for ax, run, name in ((ax_a, wrapped, "bearing innovation wrapped"), (ax_b, unwrapped, "not wrapped")):
-        ax.plot(run.truth[:, 0], run.truth[:, 1], color=palette.TRUTH, lw=2.5, label="truth")
+        ax.plot(run.truth[:, 0], run.truth[:, 1], color=palette.TRUTH, ls=palette.TRUTH_LINE, lw=2.5, label="truth")
         ax.plot(run.mu[:, 0], run.mu[:, 1], color=palette.ESTIMATE, lw=1.5, label="EKF estimate")
         landmarks(ax, run.landmarks)
         ax.set_aspect("equal", adjustable="datalim")

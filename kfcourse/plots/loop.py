@@ -1,12 +1,12 @@
 r"""The landmark localization loop (chapter 10): the map and the error strips.
 
-The map shows the landmarks (purple squares), the true path and robot (faint
-grey), the filter's trail and robot (teal, lightly filled), its 2-sigma position
+The map shows the landmarks (purple squares), the true path (grey, dotted) and
+robot (grey), the filter's trail and robot (teal, lightly filled), its 2-sigma position
 ellipse after the step's readings (teal) and before them (dashed purple, the
 prediction), drawn over the robots so that a small ellipse still shows,
 teal beams from the estimate to the landmarks the filter used at that step (to the
 landmark it matched each reading to, when the readings carry no labels: chapter 11), and
-dashed orange beams to those whose readings it rejected (outside its gate).
+dash-dot orange beams to those whose readings it rejected (outside its gate).
 
 Under the map, two strips show the position error along x and along y over the
 whole run, in metres, each with its band of plus or minus two standard deviations,
@@ -107,7 +107,7 @@ class LoopMap:
     prior_ring: Ellipse  #: 2-sigma, before the step's readings
     ring: Ellipse  #: 2-sigma, after them
     beams: LineCollection  #: teal, to the landmarks the filter used its readings as
-    rejected: LineCollection  #: dashed orange, to those whose readings were rejected
+    rejected: LineCollection  #: dash-dot orange, to those whose readings were rejected
     note: Text  #: "sensor blind", "sight back", "kidnapped", or nothing
 
     @property
@@ -156,7 +156,7 @@ def loop_map(ax, run, k: int | None = None, legend: bool = True) -> LoopMap:
     ax.set_xlabel("x (m)")
     ax.set_ylabel("y (m)")
     landmarks(ax, marks, label="landmarks", zorder=2)
-    path = {"color": palette.TRUTH, "lw": 4, "alpha": 0.35, "solid_capstyle": "round"}
+    path = {"color": palette.TRUTH, "ls": palette.TRUTH_LINE, "lw": 3}
     (truth_before,) = ax.plot([], [], **path, label="true path")
     (truth_after,) = ax.plot([], [], **path)
     (trail,) = ax.plot([], [], color=palette.ESTIMATE, lw=1.6, alpha=0.9, label="estimate so far")
@@ -173,11 +173,11 @@ def loop_map(ax, run, k: int | None = None, legend: bool = True) -> LoopMap:
     )
     eye = np.eye(2)
     prior_ring = covariance_ellipse(
-        ax, start, eye, nsig=NSIG, color=palette.PREDICTION, lw=1.3, ls="--", zorder=5, label="2σ before readings"
+        ax, start, eye, nsig=NSIG, color=palette.PREDICTION, lw=1.3, zorder=5, label="2σ before readings"
     )
     ring = covariance_ellipse(ax, start, eye, nsig=NSIG, lw=2.0, zorder=6, label="2σ after readings")
     lines = beams(ax)
-    refused = beams(ax, color=palette.MEASUREMENT, linestyles="--", lw=1.4)
+    refused = beams(ax, color=palette.MEASUREMENT, linestyles=palette.MEASUREMENT_LINE, lw=1.4)
     note = ax.text(
         0.5, 0.97, "", transform=ax.transAxes, ha="center", va="top", fontsize=11, weight="bold", color=palette.INK
     )
@@ -188,9 +188,9 @@ def loop_map(ax, run, k: int | None = None, legend: bool = True) -> LoopMap:
             Line2D([], [], **path),
             Line2D([], [], color=palette.ESTIMATE, lw=1.6),
             Ellipse((0, 0), 1, 1, fill=False, edgecolor=palette.ESTIMATE, lw=2),
-            Ellipse((0, 0), 1, 1, fill=False, edgecolor=palette.PREDICTION, lw=1.3, ls="--"),
+            Ellipse((0, 0), 1, 1, fill=False, edgecolor=palette.PREDICTION, lw=1.3, ls=palette.PREDICTION_LINE),
             Line2D([], [], color=palette.ESTIMATE, lw=1.2),
-            Line2D([], [], color=palette.MEASUREMENT, lw=1.4, ls="--"),
+            Line2D([], [], color=palette.MEASUREMENT, lw=1.4, ls=palette.MEASUREMENT_LINE),
         ]
         labels = ["landmark", "truth", "estimate", "2σ estimate", "2σ prediction", "reading used", "reading rejected"]
         ax.legend(

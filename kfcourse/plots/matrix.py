@@ -92,7 +92,8 @@ def predict_update_chart(
         half_width = k * math.sqrt(Q)
         band = (z - half_width, z + half_width)
         ax.axvspan(*band, color=palette.MEASUREMENT, alpha=0.15, lw=0)
-        ax.axvline(z, color=palette.MEASUREMENT, ls=":", lw=1.8, label=rf"reading $z \pm {k:g}\sigma_Q$")
+        reading = rf"reading $z \pm {k:g}\sigma_Q$"
+        ax.axvline(z, color=palette.MEASUREMENT, ls=palette.MEASUREMENT_LINE, lw=1.8, label=reading)
     covariance_ellipse(
         ax,
         mu_bar,

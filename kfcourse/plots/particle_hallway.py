@@ -31,7 +31,7 @@ from .hallway import BARS_SHARE, TOP_STEP, hallway_map
 from .style import new_figure
 
 JITTER_DOTS = 5000  # jitter positions made once; a larger cloud reuses them
-WEIGHT_SHADES = LinearSegmentedColormap.from_list("weight", ["#d5eeed", palette.ESTIMATE, "#0a4f4d"])
+WEIGHT_SHADES = LinearSegmentedColormap.from_list("weight", ["#d3ece8", palette.ESTIMATE, "#003f38"])
 
 
 @dataclass(frozen=True)

@@ -1,7 +1,7 @@
 r"""The particle filter on the landmark loop (chapter 11): the cloud on chapter 10's map, and its ESS strip.
 
 The map is chapter 10's (:mod:`kfcourse.plots.loop`): the landmarks (purple squares), the
-true path and robot (faint grey), the estimate's trail and robot (teal) with its 2-sigma
+true path (grey, dotted) and robot (grey), the estimate's trail and robot (teal) with its 2-sigma
 position ellipse, and teal beams from the estimate to the landmarks read at that step.  On
 it, the particles as small dots, after the step's prediction, shaded by their weight
 before resampling: pale where a particle explains the readings badly, dark purple where
@@ -146,7 +146,7 @@ def cloud_view(model, width: float = 6.4, dot_size: float = DOT_SIZE) -> CloudVi
     ax.set_xlabel("x (m)")
     ax.set_ylabel("y (m)")
     landmarks(ax, np.asarray(run.landmarks, float).reshape(-1, 2), zorder=2)
-    path = {"color": palette.TRUTH, "lw": 4, "alpha": 0.35, "solid_capstyle": "round"}
+    path = {"color": palette.TRUTH, "ls": palette.TRUTH_LINE, "lw": 3}
     (truth_before,) = ax.plot([], [], **path)
     (truth_after,) = ax.plot([], [], **path)
     cloud = ax.scatter(

@@ -1,8 +1,8 @@
 """Chapter 0's picture: a robot on a line, its raw readings, dead reckoning and the filter.
 
-The upper panel shows positions over time: the truth (faint grey), the sensor's
-pings (orange dots) and the trace that trusts each one (orange line), dead
-reckoning (dashed purple) and the Kalman filter's estimate with its band of plus
+The upper panel shows positions over time: the truth (grey, dotted), the sensor's
+pings (orange dots) and the trace that trusts each one (orange, dash-dot), dead
+reckoning (dashed purple) and the Kalman filter's estimate (solid) with its band of plus
 or minus one standard deviation (teal).  The lower panel shows how far each of
 the three is from the truth at every step, in the same colours, with their RMS
 errors so far written above it.
@@ -82,19 +82,21 @@ def raw_vs_filtered_view(n_steps: int) -> RawVsFilteredView:
     ax.set_ylabel("position (m)")
     for axis in (ax.yaxis, ax_err.yaxis):
         fixed_width_ticks(axis, 4)  # the layout is found once: wider labels would push "position (m)" out
-    (truth,) = ax.plot([], [], color=palette.TRUTH, lw=5, alpha=0.55, label="truth (unknown)")
+    (truth,) = ax.plot([], [], color=palette.TRUTH, ls=palette.TRUTH_LINE, lw=4, label="truth (unknown)")
     pings = ax.scatter([], [], s=14, color=palette.MEASUREMENT, alpha=0.75, label="sensor pings", zorder=3)
-    (raw,) = ax.plot([], [], color=palette.MEASUREMENT, lw=1.0, alpha=0.8, label="raw: trust each ping")
-    (dead,) = ax.plot([], [], "--", color=palette.PREDICTION, lw=1.6, label="dead reckoning")
+    (raw,) = ax.plot(
+        [], [], color=palette.MEASUREMENT, ls=palette.MEASUREMENT_LINE, lw=1.0, alpha=0.8, label="raw: trust each ping"
+    )
+    (dead,) = ax.plot([], [], color=palette.PREDICTION, ls=palette.PREDICTION_LINE, lw=1.6, label="dead reckoning")
     band = ax.fill_between([], [], [], color=palette.ESTIMATE, alpha=0.18, lw=0)
-    (estimate,) = ax.plot([], [], color=palette.ESTIMATE, lw=2.4, label="filtered (Kalman)")
+    (estimate,) = ax.plot([], [], color=palette.ESTIMATE, ls=palette.ESTIMATE_LINE, lw=2.4, label="filtered (Kalman)")
     (robot,) = ax.plot([], [], "o", color=palette.ESTIMATE, ms=8, zorder=4)
     ax.legend(loc="lower left", bbox_to_anchor=(0.0, 1.0), ncols=3, fontsize=9)
     ax_err.set_xlabel("time step")
     ax_err.set_ylabel("distance from truth (m)")
-    (err_raw,) = ax_err.plot([], [], color=palette.MEASUREMENT, lw=0.9, alpha=0.8)
-    (err_dead,) = ax_err.plot([], [], "--", color=palette.PREDICTION, lw=1.6)
-    (err_estimate,) = ax_err.plot([], [], color=palette.ESTIMATE, lw=2.0)
+    (err_raw,) = ax_err.plot([], [], color=palette.MEASUREMENT, ls=palette.MEASUREMENT_LINE, lw=0.9, alpha=0.8)
+    (err_dead,) = ax_err.plot([], [], color=palette.PREDICTION, ls=palette.PREDICTION_LINE, lw=1.6)
+    (err_estimate,) = ax_err.plot([], [], color=palette.ESTIMATE, ls=palette.ESTIMATE_LINE, lw=2.0)
     readout = ax_err.text(0.0, 1.03, "", transform=ax_err.transAxes, ha="left", va="bottom", fontsize=9.5)
     return RawVsFilteredView(
         fig, ax, ax_err, truth, pings, raw, dead, band, estimate, robot, err_raw, err_dead, err_estimate, readout

@@ -51,7 +51,7 @@ def kf_run_chart(run, title: str = "", detrend: bool = True, start: int = 0):
     band = np.sqrt(np.asarray(run.S, float))
     fig, (ax_x, ax_nu) = new_figure(8.0, 4.6, nrows=2, sharex=True, height_ratios=(3, 2))
 
-    ax_x.plot(t, truth, color=palette.TRUTH, lw=2.4, label="truth")
+    ax_x.plot(t, truth, color=palette.TRUTH, ls=palette.TRUTH_LINE, lw=2.5, label="truth")
     ax_x.plot(t, z, "o", color=palette.MEASUREMENT, ms=3, alpha=0.8, label="readings z")
     ax_x.fill_between(t, mu - sigma, mu + sigma, color=palette.ESTIMATE, alpha=0.25, lw=0, label="μ ± σ")
     ax_x.plot(t, mu, color=palette.ESTIMATE, lw=1.8, label="estimate μ")
@@ -71,7 +71,7 @@ def kf_run_chart(run, title: str = "", detrend: bool = True, start: int = 0):
         t[start:][[0, -1]],
         [mean, mean],
         color=palette.MEASUREMENT,
-        ls="--",
+        ls=palette.MEASUREMENT_LINE,
         lw=1.2,
         label=f"mean ({window}) {mean:+.2f} m",
     )

@@ -1,9 +1,9 @@
 r"""Chapter 3's picture: one half-step of the 1-D Kalman filter on Gaussian curves.
 
-Four curves, of which each half-step shows some: the belief before the step (dashed
-teal), the prediction :math:`\overline{bel}` (purple), the measurement
-:math:`\mathcal N(z, Q)` around the reading (orange, the reading a dotted line) and the
-belief after the update (teal).  The legend fades the entries of the curves not shown.
+Four curves, of which each half-step shows some: the belief before the step (thin
+teal), the prediction :math:`\overline{bel}` (purple, dashed), the measurement
+:math:`\mathcal N(z, Q)` around the reading (orange, dash-dot, the reading a dash-dot line) and
+the belief after the update (teal, solid).  The legend fades the entries of the curves not shown.
 The x axis follows the belief, a whole number of metres at its centre; the density
 axis's top is a power of two (:func:`~kfcourse.plots.style.nice_limit`), so that both
 move in coarse steps.  A text at the top right says what the last button did.
@@ -45,11 +45,11 @@ class StepThroughView:
 
     fig: Figure
     ax: Axes
-    before: tuple[Line2D, None]  #: the belief before this step (dashed, unfilled)
+    before: tuple[Line2D, None]  #: the belief before this step (thin, unfilled)
     prediction: tuple[Line2D, PolyCollection]
     measurement: tuple[Line2D, PolyCollection]
     belief: tuple[Line2D, PolyCollection]
-    reading: Line2D  #: the reading z, a dotted vertical line
+    reading: Line2D  #: the reading z, a dash-dot vertical line
     legend: Legend  #: background: its entries fade when their curves are hidden
     status: Text  #: top right: what the last button did, and R and Q
 
@@ -78,12 +78,11 @@ def step_through_view() -> StepThroughView:
     fixed_width_ticks(ax.yaxis)  # the layout is found once: keep the density labels one width
     x = np.linspace(-HALF_WIDTH, HALF_WIDTH, GRID_POINTS)
     before = gaussian_curve(ax, x, 0.0, 1.0, palette.ESTIMATE, "belief before this step", fill=False)
-    before[0].set_linestyle("--")
-    before[0].set_linewidth(1.4)
+    before[0].set_linewidth(1.4)  # the last estimate: thin, solid as an estimate is, without fill
     prediction = gaussian_curve(ax, x, 0.0, 1.0, palette.PREDICTION, r"prediction  $\overline{bel}$")
     measurement = gaussian_curve(ax, x, 0.0, 1.0, palette.MEASUREMENT, "measurement  N(z, Q)")
     belief = gaussian_curve(ax, x, 0.0, 1.0, palette.ESTIMATE, "belief  bel")
-    reading = ax.axvline(0.0, color=palette.MEASUREMENT, lw=1, ls=":")
+    reading = ax.axvline(0.0, color=palette.MEASUREMENT, lw=1, ls=palette.MEASUREMENT_LINE)
     legend = ax.legend(loc="upper left", fontsize=9)
     status = ax.text(0.99, 0.97, "", transform=ax.transAxes, ha="right", va="top", fontsize=10)
     return StepThroughView(fig, ax, before, prediction, measurement, belief, reading, legend, status)

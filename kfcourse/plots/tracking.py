@@ -40,7 +40,7 @@ class TrackerView:
     fig: Figure
     readings: PathCollection  #: orange, the readings so far
     trail: Line2D  #: teal, the estimate so far
-    ahead: Line2D  #: dotted teal, the estimate for the rest of the run
+    ahead: Line2D  #: thin pale teal, the estimate for the rest of the run
     truth_velocity: Line2D  #: grey, from the true position to where it would be ARROW_TIME later
     truth_dot: Line2D  #: grey, the true position
     velocity: Line2D  #: teal, the same for the estimate, cut at the edge of the map
@@ -89,12 +89,14 @@ def tracker_view(run, width: float = 8.0, height: float = 4.4) -> TrackerView:
     ax.set_aspect("equal")
     ax.set_xlabel("x (m)")
     ax.set_ylabel("y (m)")
-    ax.plot(run.truth[:, 0], run.truth[:, 1], color=palette.TRUTH, lw=5, alpha=0.45, label="true path")
+    ax.plot(run.truth[:, 0], run.truth[:, 1], color=palette.TRUTH, ls=palette.TRUTH_LINE, lw=3.5, label="true path")
     (truth_dot,) = ax.plot([], [], "o", color=palette.TRUTH, ms=9, zorder=3, label="true position")
-    (truth_velocity,) = ax.plot([], [], color=palette.TRUTH, lw=2.5, zorder=3, label="true velocity (1 s)")
+    (truth_velocity,) = ax.plot(
+        [], [], color=palette.TRUTH, ls=palette.TRUTH_LINE, lw=3, zorder=3, label="true velocity (1 s)"
+    )
     readings = ax.scatter([], [], s=12, color=palette.MEASUREMENT, alpha=0.7, label="readings", zorder=2)
     (trail,) = ax.plot([], [], color=palette.ESTIMATE, lw=1.6, alpha=0.8, label="estimate so far")
-    (ahead,) = ax.plot([], [], ":", color=palette.ESTIMATE, lw=1.2, alpha=0.5, label="estimate ahead")
+    (ahead,) = ax.plot([], [], color=palette.ESTIMATE, lw=1.0, alpha=0.35, label="estimate ahead")  # solid, pale
     (dot,) = ax.plot([], [], "o", color=palette.ESTIMATE, ms=8, zorder=4, label="estimated position")
     (velocity,) = ax.plot([], [], color=palette.ESTIMATE, lw=2.5, zorder=4, label="estimated velocity")
     # Lightly filled: an ellipse larger than the map still shows, as a tint over all of it.
@@ -188,7 +190,7 @@ def nees_view(t, band, dof: int, n_tracks: int, y_range=(0.5, 500.0), width: flo
     ax.set_ylim(*y_range)
     ax.set_xlabel("time (s)")
     ax.set_ylabel("average NEES")
-    ax.axhspan(low, high, color=palette.TRUTH, alpha=0.35, lw=0, label=f"95 % band for {n_tracks} honest runs")
+    ax.axhspan(low, high, color=palette.TRUTH, alpha=0.45, lw=0, label=f"95 % band for {n_tracks} honest runs")
     ax.axhline(dof, color=palette.INK, lw=1.0, ls="--", label=f"{dof} = state dimension")
     (curve,) = ax.plot(
         t, np.full(t.size, float(dof)), color=palette.ESTIMATE, lw=2.2, label="average NEES of the filter"

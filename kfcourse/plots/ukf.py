@@ -39,8 +39,8 @@ def transform_moments_chart(y, ukf, ekf, bins: int = 80, y_range=None):
     A grey histogram of the true output samples ``y``; the UKF's Gaussian (teal,
     solid) and the EKF's (teal, dashed: in the course the EKF beside another filter
     is teal dashed); a thin line at each filter's mean in its curve's style, and a
-    wide pale grey band at the samples' mean, so that it still shows when a
-    filter's mean lies on it.
+    wide grey dotted line (the truth's style) at the samples' mean, so that it still
+    shows when a filter's mean lies on it.
 
     Introduced in chapter 9.
 
@@ -88,8 +88,8 @@ def transform_moments_chart(y, ukf, ekf, bins: int = 80, y_range=None):
         ls="--",
         label=f"EKF N({mean_e:.3g}, {var_e:.3g})",
     )
-    # The samples' mean: a wide band under the filters' thin mean lines, visible even where one of them lies on it.
-    ax.axvline(float(y.mean()), color=palette.TRUTH, lw=5.0, alpha=0.5, zorder=1.5, label="samples' mean")
+    # The samples' mean: wide dots under the filters' thin mean lines, visible even where one of them lies on it.
+    ax.axvline(float(y.mean()), color=palette.TRUTH, ls=palette.TRUTH_LINE, lw=3.0, zorder=1.5, label="samples' mean")
     for mean, style in ((mean_u, "-"), (mean_e, "--")):
         ax.axvline(mean, color=palette.ESTIMATE, lw=1.0, ls=style)
     ax.set_xlim(lo, hi)
@@ -113,7 +113,7 @@ def _rms(error) -> float:
 def filter_comparison_chart(ekf, ukf):
     """Chapter 9: the same drive followed by an EKF and by a UKF.
 
-    Left: the map, the true path (grey), the UKF's estimate (teal, solid: a wide pale
+    Left: the map, the true path (grey, dotted), the UKF's estimate (teal, solid: a wide pale
     line), the EKF's (teal, dashed, drawn over it, so that both show where they
     agree) and the landmarks (purple squares), with the legend above the map so
     that it hides no landmark.  Right: the position error of each over time, in the
@@ -134,7 +134,7 @@ def filter_comparison_chart(ekf, ukf):
     if ekf.t.shape != ukf.t.shape or not np.allclose(ekf.truth, ukf.truth):
         raise ValueError("ekf and ukf must be runs of the same drive (the same t and truth)")
     fig, (ax_map, ax_e) = new_figure(10.0, 3.8, ncols=2, gridspec_kw={"width_ratios": [1, 1.2]})
-    ax_map.plot(ekf.truth[:, 0], ekf.truth[:, 1], color=palette.TRUTH, lw=3, label="truth")
+    ax_map.plot(ekf.truth[:, 0], ekf.truth[:, 1], color=palette.TRUTH, ls=palette.TRUTH_LINE, lw=3, label="truth")
     ax_map.plot(ukf.mu[:, 0], ukf.mu[:, 1], label="UKF", **UKF_STYLE)
     ax_map.plot(ekf.mu[:, 0], ekf.mu[:, 1], label="EKF", **EKF_STYLE)
     landmarks(ax_map, ekf.landmarks, label="landmarks")
@@ -165,7 +165,7 @@ class SigmaPointsView:
     bins: int  #: bins of the sampled output's histogram
     curve: Line2D  #: f
     tangent: Line2D  #: the EKF's tangent at m, teal dashed
-    guides: LineCollection  #: dotted paths of the sigma points: up to the curve, across to the output axis
+    guides: LineCollection  #: dashed paths of the sigma points: up to the curve, across to the output axis
     on_curve: PathCollection  #: the sigma points on the curve
     input_density: Line2D  #: N(m, s²), purple
     on_input: PathCollection  #: the sigma points on the input density
@@ -253,12 +253,12 @@ def sigma_points_view(
     x = np.linspace(*x_range, 500)
     (curve,) = ax_f.plot(x, x, color=palette.INK, lw=1.5, label="f(x)")
     (tangent,) = ax_f.plot(x, x, color=palette.ESTIMATE, lw=1.6, ls="--", label="EKF: tangent at m")
-    guides = LineCollection([], colors=palette.PREDICTION, lw=0.9, linestyles=":")
+    guides = LineCollection([], colors=palette.PREDICTION, lw=0.9, linestyles=palette.PREDICTION_LINE)
     ax_f.add_collection(guides)
     on_curve = _sigma_dots(ax_f, palette.PREDICTION)
     # Above the panel: inside it, sin x near its peak would run under the legend.
     ax_f.legend(loc="lower center", bbox_to_anchor=(0.5, 1.0), ncol=2, fontsize=9, frameon=False)
-    (density,) = ax_in.plot(x, x, color=palette.PREDICTION, lw=2)
+    (density,) = ax_in.plot(x, x, color=palette.PREDICTION, ls=palette.PREDICTION_LINE, lw=2)
     on_input = _sigma_dots(ax_in, palette.PREDICTION)
     sampled = Polygon([[0, 0], [1, 1], [0, 1]], closed=True, facecolor=palette.TRUTH, alpha=0.45, lw=0, label="sampled")
     ax_out.add_patch(sampled)

@@ -35,15 +35,15 @@ def table_html(d) -> str:
     return table.value
 
 
-def visible_curve(d, colour, linestyle="-"):
-    """The y-values of the one visible solid curve of a colour in the picture."""
+def visible_curve(d, colour):
+    """The y-values of the one visible curve of a role's colour, drawn in the role's line style."""
     (ax,) = d.renderer.fig.axes
     found = [
         line.get_ydata()
         for line in ax.get_lines()
         if line.get_visible()
         and line.get_color() == colour
-        and line.get_linestyle() == linestyle
+        and line.get_linestyle() == palette.line_style(colour)
         and len(line.get_xdata()) > 2
     ]
     assert len(found) == 1, f"{len(found)} visible curves of colour {colour}"

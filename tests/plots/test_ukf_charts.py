@@ -37,11 +37,12 @@ def test_moments_chart_draws_the_samples_and_both_gaussians():
         assert np.trapezoid(dens, grid) == pytest.approx(mass, abs=1e-3)  # N(mean, 16) over (-1, 25)
         assert np.allclose(mean_line.get_xdata(), mean)
     assert "UKF N(5, 16)" in [t.get_text() for t in ax.get_legend().get_texts()]
-    # The samples' mean (here on the UKF's) is a wide band under the filters' thin lines: all three show.
+    # The samples' mean (here on the UKF's) is wide dots (the truth's style) under the filters' thin lines: all show.
     (band,) = [line for line in ax.get_lines() if line.get_label() == "samples' mean"]
     assert np.allclose(band.get_xdata(), y.mean()) and abs(y.mean() - 5.0) < 0.05
     (_, ukf_mean) = [line for line in lines_of(ax, palette.ESTIMATE) if line.get_linestyle() == "-"]
-    assert band.get_linewidth() > 3 * ukf_mean.get_linewidth() and band.get_zorder() < ukf_mean.get_zorder()
+    assert band.get_linewidth() >= 3 * ukf_mean.get_linewidth() and band.get_zorder() < ukf_mean.get_zorder()
+    assert band.get_linestyle() == palette.TRUTH_LINE
     png = fig._repr_png_()
     assert png[:4] == b"\x89PNG" and len(png) > 5_000
 
