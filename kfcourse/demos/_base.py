@@ -1,4 +1,4 @@
-"""What every demo shares: a caption, the picture, the controls, and Run/Pause.
+"""What every demo shares: a caption, the picture, its description, the controls, and Run/Pause.
 
 A demo is a model, a view and a few lines of wiring.  The model holds the state and
 the methods the controls call; the view (in ``kfcourse.plots``) is a make function that
@@ -16,6 +16,7 @@ gets a light picture; once the student stops, the crisp one.  The wiring::
         model=model,
         renderer=FigureRenderer(view.fig, view.moving),
         draw=partial(update_my_view, view, model),
+        describe=model.describe,
         controls={"noise": (slider(...), model.set_noise), "again": (button("Again"), model.new_run)},
     )
 """
@@ -25,8 +26,11 @@ from __future__ import annotations
 import asyncio
 import base64
 from collections.abc import Callable
+from pathlib import Path
 
+import anywidget
 import ipywidgets as widgets
+import traitlets
 
 from ..plots.style import PIXEL_DENSITY, FigureRenderer
 
@@ -36,8 +40,23 @@ FRAME_GAP = 0.02  # s the kernel always rests between frames, to hear Pause and 
 DISPLAY_WIDTH = 950  # CSS px: a demo's picture at most (JupyterLab's output is 848 px on a 1280 px laptop)
 
 
+class Description(anywidget.AnyWidget):
+    """The demo's state in one sentence, under its picture.
+
+    The page shows ``text`` in a polite live region (a screen reader reads each new state once)
+    and makes it the picture's alt text.  The same view names the demo's sliders from their
+    labels, has them announce the value they show, and exposes toggles' pressed state
+    (``describe.js``; the focus ring is in ``describe.css``).
+    """
+
+    _esm = Path(__file__).with_name("describe.js")
+    _css = Path(__file__).with_name("describe.css")
+    text = traitlets.Unicode("").tag(sync=True)
+    names = traitlets.Dict().tag(sync=True)  # each control's key -> its name: its label, else its tooltip
+
+
 class Demo(widgets.VBox):
-    """A demo widget: caption, picture, controls.
+    """A demo widget: caption, picture, description, controls.
 
     Parameters
     ----------
@@ -51,6 +70,10 @@ class Demo(widgets.VBox):
         The figure and its moving (``dynamic``) artists.
     draw : callable
         ``draw()`` updates the artists from the model.
+    describe : callable
+        ``describe()`` says in one sentence what the picture shows now, from the model's
+        numbers (the gain, the means and variances, the error, the readings used): the
+        picture's alt text and the text under it, renewed whenever the demo comes to rest.
     controls : dict[str, (ipywidgets.Widget, callable)]
         Each control by name with the model method it is bound to: a button calls
         ``action()``, any other widget calls ``setter(new_value)``.
@@ -78,6 +101,8 @@ class Demo(widgets.VBox):
         Every slider, button and toggle, by name (tests drive them through this).
     renderer : FigureRenderer
         Turns the figure into PNG bytes.
+    description : Description
+        The sentence under the picture (``description.text``).
     image : ipywidgets.Image
         The picture.  At rest, a JPEG ``PIXEL_DENSITY * display_width`` pixels wide, so that
         it stays sharp where it is shown about ``display_width`` CSS pixels wide on a HiDPI
@@ -102,6 +127,7 @@ class Demo(widgets.VBox):
         model,
         renderer: FigureRenderer,
         draw: Callable[[], None],
+        describe: Callable[[], str],
         controls: dict,
         layout: list | None = None,
         beside: list | None = None,
@@ -111,6 +137,7 @@ class Demo(widgets.VBox):
         self.model = model
         self.renderer = renderer
         self._draw = draw
+        self._describe = describe
         self._task = None
         self._rest_timer = None
         try:  # the kernel's event loop: the demo's pictures, its rest timer and its Run task live on it
@@ -135,6 +162,9 @@ class Demo(widgets.VBox):
         size = widgets.Layout(width="100%", max_width=f"{display_width}px", min_width="0", height="auto", margin="0")
         self.image = widgets.Image(format="jpeg", layout=size)
         self.image.add_class("kf-figure")
+        self.description = Description(
+            names={key: c.description or c.tooltip or key for key, c in self.controls.items()}
+        )
         cap = widgets.HTML(f"<div style='color:#333;font-size:13px;line-height:1.4'>{caption}</div>")
         cap.add_class("kf-caption")
         if layout is None:
@@ -143,7 +173,7 @@ class Demo(widgets.VBox):
         if beside is not None:
             column = widgets.VBox([self._row(row) for row in beside], layout=widgets.Layout(flex="0 0 auto"))
             picture = widgets.HBox([self.image, column], layout=widgets.Layout(align_items="flex-start"))
-        super().__init__([cap, picture, *(self._row(row) for row in layout)])
+        super().__init__([cap, picture, self.description, *(self._row(row) for row in layout)])
         self.add_class("kf-demo")
         self.add_class(f"kf-demo-{name}")
         self.refresh()
@@ -192,18 +222,21 @@ class Demo(widgets.VBox):
             self._rest_timer = None
 
     def _show_crisp(self) -> None:
+        """The picture at rest, and its description: a live region is told each resting state once."""
         self._cancel_rest()
         with self.image.hold_sync():
             self.image.format = "jpeg"
             self.image.value = self.renderer.jpeg()
+        self.description.text = self._describe()
 
     # --- Pictures for pages without a kernel ------------------------------------------------------
 
     def _repr_mimebundle_(self, **kwargs):
-        """The widget view, plus a PNG of the picture shown now for frontends that cannot show widgets."""
+        """The widget view, plus a PNG of the picture shown now, with its description as alt text,
+        for frontends that cannot show widgets."""
         data = super()._repr_mimebundle_(**kwargs)
         data["image/png"] = base64.b64encode(self.renderer.png()).decode("ascii")
-        return data, {"image/png": {"width": self.display_width}}
+        return data, {"image/png": {"width": self.display_width, "alt": self.description.text}}
 
     def _bind(self, control: widgets.Widget, method: Callable | None) -> None:
         if method is None:
@@ -284,9 +317,9 @@ class Demo(widgets.VBox):
         while self.controls["play"].value and frame.value < frame.max:
             n = 1 + int((loop.time() - t0) / FRAME_INTERVAL)  # frames real time asks for since start
             self.step(max(start + n - frame.value, 1))  # a slow render skips frames instead of lagging
-            shown = frame.value
+            drawn = frame.value
             await asyncio.sleep(max(FRAME_GAP, t0 + n * FRAME_INTERVAL - loop.time()))
-            if frame.value != shown:  # scrubbed while running: restart the clock from there
+            if frame.value != drawn:  # scrubbed while running: restart the clock from there
                 start, t0 = frame.value, loop.time()
         self._task = None
         self.controls["play"].value = False
@@ -313,3 +346,27 @@ def slider(
 
 def button(description: str, icon: str = "", tooltip: str = "") -> widgets.Button:
     return widgets.Button(description=description, icon=icon, tooltip=tooltip, layout=widgets.Layout(width="110px"))
+
+
+def shown(value: float, fmt: str) -> str:
+    """``value`` as a slider's readout shows it with ``readout_format`` ``fmt`` (".2f", ".3g", ...),
+    so that a description names the value the student sees.
+
+    The page formats with d3-format: a true minus sign (−), no sign on a number that rounds to
+    zero, and "g" as JavaScript's ``toPrecision``, which keeps trailing zeros (0.200, 10.0) and
+    writes large or tiny numbers with an exponent (1.00e+4).
+    """
+    if not (len(fmt) >= 3 and fmt[0] == "." and fmt[-1] in "fg" and fmt[1:-1].isdigit()):
+        raise ValueError(f"fmt: expected a format like '.2f' or '.3g', got {fmt!r}")
+    digits = int(fmt[1:-1])
+    if fmt.endswith("g"):
+        mantissa, exponent = f"{value:.{max(digits - 1, 0)}e}".split("e")
+        if -7 < int(exponent) < digits:
+            text = f"{value:.{digits - 1 - int(exponent)}f}"
+        else:
+            text = f"{mantissa}e{int(exponent):+d}"
+    else:
+        text = format(value, fmt)
+    if float(text) == 0:
+        text = text.lstrip("-")
+    return "\u2212" + text[1:] if text.startswith("-") else text

@@ -59,6 +59,25 @@ class AssociationModel:
         """Share of true readings a gate of this size keeps: P(chi^2 with 2 dof <= gamma^2)."""
         return 1.0 - float(np.exp(-0.5 * self.gate**2))
 
+    def describe(self) -> str:
+        """What the picture shows: how many readings pass the gate, what became of the leg's reading,
+        and how far the accepted ones move the estimate from the truth."""
+        res, source = self.result, self.scan.source
+        passed, total = int(res.accepted.sum()), res.match.size
+        notes = []
+        lost = int(np.count_nonzero((source >= 0) & ~res.accepted))  # landmarks' own readings the gate turned away
+        if lost:
+            notes.append(f"{lost} landmark reading{'s' if lost != 1 else ''} rejected")
+        if self.leg:
+            j = int(res.match[source < 0][0])
+            notes.append("the pedestrian's leg rejected" if j < 0 else f"the pedestrian's leg taken for landmark {j}")
+        said = f" ({', '.join(notes)})" if notes else ""
+        if passed == 0:
+            effect = f"the estimate stays the prediction, {res.error_bar:.2f} m from the truth"
+        else:
+            effect = f"the update takes the position error from {res.error_bar:.2f} m to {res.error:.2f} m"
+        return f"Scan {self.seed}, gate γ = {self.gate:.1f}σ: {passed} of {total} readings pass{said}, and {effect}."
+
 
 CELL = "<td style='padding:0 10px 0 0'>{}</td>"
 
@@ -78,7 +97,7 @@ def _readout(model: AssociationModel) -> str:
         "falls outside it "
         f"{100 * (1 - model.kept()):.2g} % of the time. {table}"
         f"Position error: predicted <b>{res.error_bar:.2f} m</b>; corrected with {int(res.accepted.sum())} of "
-        f"{res.match.size} readings <b style='color:{palette.ESTIMATE}'>{res.error:.2f} m</b>.</div>"
+        f"{res.match.size} readings <b style='color:{palette.ESTIMATE_TEXT}'>{res.error:.2f} m</b>.</div>"
     )
 
 
@@ -126,6 +145,7 @@ def data_association(seed: int = 0) -> Demo:
         model=model,
         renderer=FigureRenderer(view.fig, view.moving),
         draw=draw,
+        describe=model.describe,
         controls={
             "gate": (gate, model.set_gate),
             "leg": (leg, model.set_leg),

@@ -7,12 +7,14 @@ from functools import partial
 import ipywidgets as widgets
 import numpy as np
 
+from ..filters.gaussian import mass_inside
 from ..plots.covariance import covariance_view, update_covariance
 from ..plots.style import FigureRenderer
-from ._base import Demo, slider
+from ._base import Demo, shown, slider
 
 N_SAMPLES = 1000
 SIGMAS = (1, 2, 3)  # the contours drawn, in standard deviations
+SLIDER_FORMAT = ".2f"  # the readouts of the sliders σx², σy² and ρ
 
 
 class CovarianceModel:
@@ -56,6 +58,33 @@ class CovarianceModel:
         d2 = np.sum(self.white**2, axis=1)  # squared Mahalanobis distance of each sample
         return np.array([np.mean(d2 <= k * k) for k in SIGMAS])
 
+    def axes(self) -> tuple[float, float]:
+        """The ellipses' long axis: its angle above the x axis, θ = ½ atan2(2 Σxy, Σxx − Σyy) in degrees,
+        and how many times the short axis it is, √(λmax / λmin) from the eigenvalues of Σ."""
+        Sig = self.Sig
+        angle = 0.5 * np.degrees(np.arctan2(2.0 * Sig[0, 1], Sig[0, 0] - Sig[1, 1]))
+        small, large = np.linalg.eigvalsh(Sig)
+        return float(angle), float(np.sqrt(large / small))
+
+    def describe(self) -> str:
+        """What the picture shows in two sentences: how Σ stretches and tilts the ellipses, and the
+        share of the samples inside each contour against theory."""
+        angle, ratio = self.axes()
+        sliders = {"σx²": self.var_x, "σy²": self.var_y, "ρ": self.rho}
+        values = ", ".join(f"{name} = {shown(value, SLIDER_FORMAT)}" for name, value in sliders.items())
+        shape = f"the long axis is {ratio:.1f} times the short one"
+        if f"{ratio:.1f}" == "1.0":
+            round_ = self.var_x == self.var_y and self.rho == 0.0
+            shape = "the ellipses are circles" if round_ else "the ellipses are nearly circles"
+        elif self.rho == 0.0:
+            shape += f", along the {'x' if self.var_x > self.var_y else 'y'} axis"
+        else:
+            degrees = f"{abs(angle):.0f}" if abs(angle) >= 1.0 else f"{abs(angle):.1f}"
+            shape += f", {degrees}° {'above' if angle > 0 else 'below'} the x axis"
+        inside = ", ".join(f"{100 * f:.1f} %" for f in self.fractions())
+        theory = ", ".join(f"{100 * t:.1f} %" for t in mass_inside(np.array(SIGMAS), dim=2))
+        return f"With {values}, {shape}. The 1σ, 2σ, 3σ contours hold {inside} of the samples (theory: {theory})."
+
 
 def covariance_ellipse(seed: int = 0) -> Demo:
     """Demo "covariance ellipse" (chapter 2): sliders for σx², σy² and ρ tilt and
@@ -79,10 +108,11 @@ def covariance_ellipse(seed: int = 0) -> Demo:
         model=model,
         renderer=FigureRenderer(view.fig, view.moving),
         draw=partial(update_covariance, view, model),
+        describe=model.describe,
         controls={
-            "var_x": (slider(widgets.FloatSlider, "σx²", model.var_x, 0.1, 4.0, 0.1), model.set_var_x),
-            "var_y": (slider(widgets.FloatSlider, "σy²", model.var_y, 0.1, 4.0, 0.1), model.set_var_y),
-            "rho": (slider(widgets.FloatSlider, "ρ", model.rho, -0.95, 0.95, 0.05), model.set_rho),
+            "var_x": (slider(widgets.FloatSlider, "σx²", model.var_x, 0.1, 4.0, 0.1, SLIDER_FORMAT), model.set_var_x),
+            "var_y": (slider(widgets.FloatSlider, "σy²", model.var_y, 0.1, 4.0, 0.1, SLIDER_FORMAT), model.set_var_y),
+            "rho": (slider(widgets.FloatSlider, "ρ", model.rho, -0.95, 0.95, 0.05, SLIDER_FORMAT), model.set_rho),
         },
         layout=[["var_x", "var_y"], "rho"],
     )

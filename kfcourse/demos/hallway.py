@@ -26,6 +26,7 @@ from ._base import Demo, button, slider
 
 DOORS = hallway_doors()  # (2, N_CELLS): doors on the left (row 0) and right (row 1) wall
 DOORS.flags.writeable = False
+RELIABILITY_FORMAT = ".2f"  # the reliability sliders' readouts
 
 
 class HallwayModel:
@@ -111,6 +112,31 @@ class HallwayModel:
         """``"wrap"`` or ``"wall"``, used from the next Predict on."""
         self.boundary = boundary
 
+    def describe(self) -> str:
+        """What the picture shows in two sentences: what the last step did to the belief, where it
+        peaks against the true cell, and the settings."""
+        peak = self.belief.max()
+        cells = np.flatnonzero(np.isclose(self.belief, peak, rtol=1e-9, atol=0.0))  # ties: a flat or mirrored belief
+        if cells.size == 1:
+            where = f"cell {cells[0]}"
+        elif cells.size <= 4:
+            where = f"{cells.size} cells ({', '.join(str(c) for c in cells)})"
+        else:
+            where = f"{cells.size} cells"
+        if self.phase == "predicted":
+            moves = f"{self.steps} move{'s' if self.steps != 1 else ''} since Reset"
+            blurred = " and blurred" if self.motion_reliability < 1.0 else ""
+            step = f"After Predict ({moves}: shifted right{blurred})"
+        else:
+            left, right = ("a door" if seen else "no door" for seen in self.saw_door)
+            step = f"After Update (the sensor read {left} on the left, {right} on the right)"
+        p_motion, p_sensor = (f"{p:{RELIABILITY_FORMAT}}" for p in (self.motion_reliability, self.sensor_reliability))
+        later = ", from the next Update on" if self.likelihood_is_stale() else ""
+        return (
+            f"{step} the belief peaks at {peak:.2f} on {where}; the robot is truly at cell {self.true_cell}. "
+            f"Motion reliability {p_motion}, sensor reliability {p_sensor}{later}, ends: {self.boundary}."
+        )
+
 
 def hallway(seed: int = 0) -> Demo:
     """Demo "histogram hallway" (chapter 1): Predict shifts and blurs the bars,
@@ -137,16 +163,21 @@ def hallway(seed: int = 0) -> Demo:
         model=model,
         renderer=FigureRenderer(view.fig, view.moving),
         draw=partial(update_hallway, view, model),
+        describe=model.describe,
         controls={
             "predict": (button("Predict", icon="arrow-right", tooltip="Move one cell right"), model.predict),
             "update": (button("Update", icon="eye", tooltip="Read the door sensor on both walls"), model.update),
             "reset": (button("Reset", icon="undo", tooltip="Flat belief and a first look"), model.reset),
             "motion_reliability": (
-                slider(widgets.FloatSlider, "motion reliability", MOTION_RELIABILITY, 0.5, 1.0, 0.01),
+                slider(
+                    widgets.FloatSlider, "motion reliability", MOTION_RELIABILITY, 0.5, 1.0, 0.01, RELIABILITY_FORMAT
+                ),
                 model.set_motion_reliability,
             ),
             "sensor_reliability": (
-                slider(widgets.FloatSlider, "sensor reliability", SENSOR_RELIABILITY, 0.5, 0.99, 0.01),
+                slider(
+                    widgets.FloatSlider, "sensor reliability", SENSOR_RELIABILITY, 0.5, 0.99, 0.01, RELIABILITY_FORMAT
+                ),
                 model.set_sensor_reliability,
             ),
             "boundary": (boundary, model.set_boundary),

@@ -12,7 +12,7 @@ from ..plots.loop import loop_view, update_loop_view
 from ..plots.style import FigureRenderer
 from ..sim.localization import HONEST_NEES
 from ..sim.localization import landmark_loop as run_loop
-from ._base import Demo, button, slider
+from ._base import Demo, button, shown, slider
 
 FIRST_FRAME = 60  # the step shown first: on the top straight, two landmarks in view
 NOISE_RANGE = (-1.0, 1.0)  # log10 of the world's noise scales the sliders reach: 0.1x to 10x
@@ -23,6 +23,7 @@ IMAGE_WIDTH = 500  # CSS px at most: beside the column, within a laptop's 848 px
 COLUMN_WIDTH = 340  # CSS px: the controls and the readout beside the picture
 BUTTONS = ["dropout", "kidnap", "new"]  # one row of the column: 105 + 125 + 100 px
 GATE = 4.0  # the filter rejects a reading more than 4 standard deviations from its prediction (chapter 8)
+SLIDER_FORMAT = ".2g"  # the readout of the four log sliders; the description writes their values the same way
 
 
 class LoopModel:
@@ -134,6 +135,43 @@ class LoopModel:
         """Share of the steps so far with the true position inside the 3-sigma ellipse (0 to 1)."""
         return float(np.mean(self.run.inside[: self.frame + 1]))
 
+    def describe(self) -> str:
+        """What the picture shows: the step, what the filter saw and did, its error; then the settings
+        that differ from an honest filter in the usual world, and whether the lap's NEES calls it honest."""
+        run, k = self.run, self.frame
+        used, rejected = int(np.count_nonzero(run.used[k])), int(np.count_nonzero(run.rejected[k]))
+        name = "your filter" if self.filter == YOURS and self.failure is None else f"the {self.run.filter.upper()}"
+        notes = ["your filter failed: the course's EKF is shown"] if self.failure else []
+        if self.kidnap is not None:
+            notes.append(f"{'the robot was kidnapped' if k >= self.kidnap else 'a kidnap comes'} at step {self.kidnap}")
+        if self.is_blind():
+            did = f"{name} sees nothing (the sensor is blind)"
+        else:
+            did = f"{name} uses {used or 'no'} reading{'s' if used != 1 else ''}"
+            did += f", rejects {rejected}" if rejected else ""
+            did += " (sight back: the nearest landmark only)" if self.blind and k == self.blind[1] else ""
+        error = f"{run.error[k]:.3f}" if run.error[k] < 1e3 else "over 1000"  # a student's step may fly off
+        inside = "inside" if run.inside[k] else "outside"
+        said = f" ({'; '.join(notes)})" if notes else ""
+        now = f"Step {k}{said}: {did} and is {error} m off, the truth {inside} its 3σ ellipse."
+        changed = [
+            f"{label} ×{shown(value, SLIDER_FORMAT)}"
+            for label, value in (
+                ("the world's process noise", self.motion_noise),
+                ("measurement noise", self.sensor_noise),
+                ("the filter's R", self.trust_motion),
+                ("the filter's Q", self.trust_sensor),
+            )
+            if shown(value, SLIDER_FORMAT) != shown(1.0, SLIDER_FORMAT)
+        ]
+        nees, verdict = run.honesty()
+        if not np.isfinite(nees):
+            nees_text = "unbounded"
+        else:  # two digits, written out: 2.2, 170, 160,000
+            nees_text = f"{nees:.2g}" if nees < 100 else f"{float(f'{nees:.2g}'):,.0f}"
+        lap = f"over this lap the filter is {verdict} (mean NEES {nees_text}; an honest filter's is 2)."
+        return f"{now} With {' and '.join(changed)}, {lap}" if changed else f"{now} {lap[0].upper()}{lap[1:]}"
+
 
 def _readout(model: LoopModel) -> str:
     """The lines beside the picture: what the filter did at the step shown, its error, its doubt, its honesty."""
@@ -145,7 +183,9 @@ def _readout(model: LoopModel) -> str:
         back = " (sight back: the nearest landmark only)" if model.blind and k == model.blind[1] else ""
         sight = f"uses {used} reading{'s' if used != 1 else ''}{back}"
         if rejected:
-            sight += f", <span style='color:{palette.MEASUREMENT}'><b>rejects {rejected}</b></span> (outside the gate)"
+            sight += (
+                f", <span style='color:{palette.MEASUREMENT_TEXT}'><b>rejects {rejected}</b></span> (outside the gate)"
+            )
     before, after = model.areas()
     shrink = f" (×{after / before:#.2g})" if before > 0 else ""  # two digits however small: ×0.10, ×0.0022
     inside = "inside" if run.inside[k] else "<b>outside</b>"
@@ -158,9 +198,9 @@ def _readout(model: LoopModel) -> str:
     return (
         f"<div style='font-size:13px;line-height:1.5'>{failed}step {k}, t = {run.t[k]:.1f} s, run {model.seed}: "
         f"{sight}{kidnapped}<br>"
-        f"<span style='color:{palette.ESTIMATE}'>position error {error} m</span><br>"
-        f"1σ area: <span style='color:{palette.PREDICTION}'>{before:.3g}</span> before the readings → "
-        f"<span style='color:{palette.ESTIMATE}'>{after:.3g} m²</span>{shrink}<br>"
+        f"<span style='color:{palette.ESTIMATE_TEXT}'>position error {error} m</span><br>"
+        f"1σ area: <span style='color:{palette.PREDICTION_TEXT}'>{before:.3g}</span> before the readings → "
+        f"<span style='color:{palette.ESTIMATE_TEXT}'>{after:.3g} m²</span>{shrink}<br>"
         f"truth {inside} the 3σ ellipse ({model.share_inside():.0%} of steps so far)<br>"
         f"this lap, the filter is <b>{verdict}</b>: mean NEES {nees_text} "
         f"(honest: {HONEST_NEES[0]:g} to {HONEST_NEES[1]:g}, 2 on average)</div>"
@@ -180,7 +220,7 @@ def _controls(model: LoopModel, kidnap: widgets.Button) -> dict:
     """
     lo, hi = NOISE_RANGE
     tlo, thi = TRUST_RANGE
-    log = {"readout_format": ".2g", "continuous_update": False, "base": 10}
+    log = {"readout_format": SLIDER_FORMAT, "continuous_update": False, "base": 10}
     motion = slider(widgets.FloatLogSlider, "process noise ×", 1.0, lo, hi, 0.05, **log)
     sensor = slider(widgets.FloatLogSlider, "measurement noise ×", 1.0, lo, hi, 0.05, **log)
     R, Q = (slider(widgets.FloatLogSlider, f"filter's {x} ×", 1.0, tlo, thi, 0.1, **log) for x in "RQ")
@@ -213,8 +253,8 @@ def _controls(model: LoopModel, kidnap: widgets.Button) -> dict:
 
 
 CAPTION = (
-    "<b>Landmark loop.</b> Purple squares: landmarks. Grey: true path and robot. Teal: the filter's estimate, "
-    "trail, 2σ ellipse (dashed purple: before this step's readings) and beams to the readings it uses; dashed "
+    "<b>Landmark loop.</b> Purple squares: landmarks. Grey: true path (dotted) and robot. Teal: the filter's estimate, "
+    "trail, 2σ ellipse (dashed purple: before this step's readings) and beams to the readings it uses; dash-dot "
     "orange: readings it rejects (over 4σ off). Strips: x and y error (truth − estimate, m) in the filter's ±2σ "
     "band; grey: blind steps; dotted: the kidnap. <i>process</i> / <i>measurement noise</i>: the world's odometry "
     "and sensor noise. <i>filter's R</i> / <i>Q</i>: the noise the filter assumes, times the true one (1: honest). "
@@ -249,6 +289,7 @@ def landmark_loop(seed: int = 0, filter=None) -> Demo:
         model=model,
         renderer=FigureRenderer(view.fig, view.moving),
         draw=lambda: _draw(view, model, readout, kidnap),
+        describe=model.describe,
         frames=model.run.t.size,
         controls=_controls(model, kidnap),
         beside=[["play", "frame"], "motion", "sensor", "trust_motion", "trust_sensor", BUTTONS, "filter", readout],

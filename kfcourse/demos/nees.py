@@ -9,7 +9,7 @@ import numpy as np
 from ..plots.style import FigureRenderer
 from ..plots.tracking import nees_view, update_nees_view
 from ..sim.target import filter_tracks, nees, nees_band, simulate_tracks
-from ._base import Demo, button, slider
+from ._base import Demo, button, shown, slider
 
 N_TRACKS = 200
 N_STEPS = 60
@@ -17,6 +17,8 @@ DOF = 4  # the state [px, py, vx, vy]
 LEVEL = 0.95
 Y_RANGE = (0.5, 500.0)  # log axis: from timid to badly over-confident
 DISPLAY_WIDTH = 848  # CSS px: a laptop's notebook width
+FACTOR_FORMAT = ".3g"  # the factor slider's readout
+NOISE_NAMES = {"R": "process noise", "Q": "measurement noise"}
 
 
 class NeesPanel:
@@ -79,6 +81,18 @@ class NeesPanel:
             return "timid: the ellipse is larger than the real errors"
         return "honest: the ellipse matches the real errors"
 
+    def describe(self) -> str:
+        """What the picture shows in two sentences: the mistuning as the controls show it, where the average
+        NEES lies against its band and its expected value; the verdict."""
+        _, inside, _ = self.fractions()
+        factor = shown(self.factor, FACTOR_FORMAT)
+        return (
+            f"With the filter assuming {factor} × the true {self.which} ({NOISE_NAMES[self.which]}), "
+            f"the average NEES of {N_TRACKS} tracks (run {self.batch.seed}) is inside the 95 % band at "
+            f"{100 * inside:.0f} % of the steps and {self.avg_nees.mean():.2f} on average, against {DOF} expected. "
+            f"The filter is {self.verdict()}."
+        )
+
 
 def _readout(model: NeesPanel) -> str:
     """The three lines under the picture: the mistuning and the mean, the shares of steps below, inside and
@@ -118,18 +132,19 @@ def nees_panel(seed: int = 0) -> Demo:
         "<i>factor</i> × the true R (process) or Q (measurement), as <i>mistune</i> picks; <i>New run</i> draws new "
         "tracks."
     )
-    tips = ["process noise R", "measurement noise Q"]
+    tips = [f"{NOISE_NAMES[name]} {name}" for name in ("R", "Q")]
     which = widgets.ToggleButtons(
         options=["R", "Q"], value=model.which, description="mistune", tooltips=tips, style={"button_width": "60px"}
     )
     # Every factor reruns all the tracks: the slider reports where it is let go, not every value on the way.
-    factor = slider(widgets.FloatLogSlider, "factor", 1.0, -2, 2, 0.1, ".3g", continuous_update=False, base=10)
+    factor = slider(widgets.FloatLogSlider, "factor", 1.0, -2, 2, 0.1, FACTOR_FORMAT, continuous_update=False, base=10)
     demo = Demo(
         name="nees",
         caption=caption,
         model=model,
         renderer=FigureRenderer(view.fig, view.moving),
         draw=draw,
+        describe=model.describe,
         controls={
             "which": (which, model.set_which),
             "factor": (factor, model.set_factor),

@@ -85,6 +85,28 @@ class CloudModel:
         self.seed += 1
         self._rerun()
 
+    def describe(self) -> str:
+        """What the picture shows: the cloud's error and whether the truth is inside its ellipse, the
+        effective sample size and whether the step resampled; then the settings that shape this lap."""
+        run, k = self.run, self.frame
+        inside = "inside" if run.inside[k] else "outside"
+        ess = run.ess[k]
+        if run.resampled[k]:
+            after = "under N/2, so the cloud is resampled"
+            after += f" and {run.injected[k]} particles replaced by random poses" if run.injected[k] else ""
+        else:
+            after = "at or over N/2, so the weights are kept"
+        now = (
+            f"Step {k}: the {run.n_particles} particles' mean is {run.error[k]:.2f} m from the truth, which is "
+            f"{inside} their 3σ ellipse; the effective sample size {ess:.0f} is {after}."
+        )
+        settings = [f"{run.resample} resampling", "a global start" if self.global_start else "a known start"]
+        if self.injection:
+            settings.append(f"{INJECTION:.0%} injected after each resampling")
+        if self.kidnap is not None:
+            settings.append(f"{'a kidnap at' if k >= self.kidnap else 'a kidnap to come at'} step {self.kidnap}")
+        return f"{now} Run {self.seed}, with {', '.join(settings[:-1])} and {settings[-1]}."
+
 
 def _readout(model: CloudModel) -> str:
     """The lines beside the picture: the step, the error, the ESS, and what happened after weighing."""
@@ -100,7 +122,7 @@ def _readout(model: CloudModel) -> str:
     return (
         f"<div style='font-size:13px;line-height:1.5'>step {k}, t = {run.t[k]:.1f} s, run {model.seed}: "
         f"{N} particles, {seen} reading{'s' if seen != 1 else ''}{kidnapped}<br>"
-        f"<span style='color:{palette.ESTIMATE}'>position error {run.error[k]:.2f} m</span><br>"
+        f"<span style='color:{palette.ESTIMATE_TEXT}'>position error {run.error[k]:.2f} m</span><br>"
         f"N<sub>eff</sub> = {ess:.0f} ({ess / N:.1%} of N)<br>{after}{injected}</div>"
     )
 
@@ -122,6 +144,7 @@ def _controls(model: CloudModel, kidnap: widgets.Button) -> dict:
         options=list(RESAMPLERS),
         value=model.resample,
         tooltips=[f"Resample with the {name} scheme" for name in RESAMPLERS],
+        tooltip="resampling scheme",  # the group's name for a screen reader: it has no label
         style={"button_width": f"{SCHEME_BUTTON}px"},
     )
     start = widgets.ToggleButton(
@@ -147,7 +170,7 @@ def _controls(model: CloudModel, kidnap: widgets.Button) -> dict:
 
 CAPTION = (
     "<b>Particle cloud.</b> The loop of chapter 10, followed by a particle filter. Dots: the particles after "
-    "the step's prediction, shaded by their weight (dark purple: heavy). Grey: true path and robot. Teal: the "
+    "the step's prediction, shaded by their weight (dark purple: heavy). Grey: true path (dotted) and robot. Teal: the "
     "cloud's mean, trail, 2σ ellipse and beams to the readings. Strip: the effective sample size N<sub>eff</sub>/N; "
     "under the dashed N/2 line the filter resamples. <i>Global start</i>: the start unknown, particles everywhere. "
     "<i>inject</i>: random particles after each resampling. <i>Kidnap</i> moves the true robot half a lap on."
@@ -178,6 +201,7 @@ def particle_cloud(seed: int = 0) -> Demo:
         model=model,
         renderer=FigureRenderer(view.fig, view.moving),
         draw=lambda: _draw(view, model, readout, kidnap),
+        describe=model.describe,
         frames=model.run.t.size,
         controls=_controls(model, kidnap),
         beside=[["play", "frame"], "particles", "resample", ["global_start", "injection"], ["kidnap", "new"], readout],

@@ -122,6 +122,23 @@ class ParticleHallwayModel:
         self.seed += 1
         self.reset()
 
+    def describe(self) -> str:
+        """What the picture shows: the last press, how far the particles' histogram is from the bars
+        (TV), the effective sample size N_eff, and the bars' most likely cell against the robot's."""
+        moves = f"{self.steps} move{'s' if self.steps != 1 else ''}"
+        if self.phase == "predicted":
+            last = f"After Predict ({moves} so far)"
+        else:
+            left, right = self.saw_door  # the reading: a door on the left wall, on the right
+            seen = "doors on both sides" if left and right else "a door on the left" if left else "a door on the right"
+            last = f"After an Update that saw {seen if left or right else 'no door'} ({moves} so far)"
+        peak = int(np.argmax(self.belief))
+        return (
+            f"{last}, the {self.n_particles} particles' histogram lies TV = {self.tv:.2f} from the histogram "
+            f"filter's bars (total variation: 0 the same, 1 no overlap), effective sample size {self.n_eff:.0f}. "
+            f"The tallest bar is cell {peak} ({self.belief[peak]:.0%}); the robot is in cell {self.true_cell}."
+        )
+
 
 def particle_hallway(seed: int = 0) -> Demo:
     """Demo "particle hallway" (chapter 11): chapter 1's bars and a particle cloud on the same readings.
@@ -144,6 +161,7 @@ def particle_hallway(seed: int = 0) -> Demo:
         model=model,
         renderer=FigureRenderer(view.fig, view.moving),
         draw=partial(update_particle_hallway, view, model),
+        describe=model.describe,
         controls={
             "new_run": (button("New run", icon="random", tooltip="The next seed"), model.new_run),
             "predict": (button("Predict", icon="arrow-right", tooltip="Move one cell right"), model.predict),

@@ -16,6 +16,7 @@ N_STEPS = 150
 STEP_STD = 0.05  # m of disturbance per step
 SENSOR_STD = 0.4  # m, the slider's starting point
 SENSOR_MAX = 3.0  # m
+SENSOR_FORMAT = ".2f"  # the sensor-noise slider's readout
 
 
 class RawVsFiltered:
@@ -60,6 +61,17 @@ class RawVsFiltered:
         k = self.frame + 1
         return tuple(float(np.sqrt(np.mean(e[:k] ** 2))) for e in self.errors())
 
+    def describe(self) -> str:
+        """What the picture shows in one sentence: the run and the step, the sensor noise, and how far each
+        estimate has been from the truth so far (RMS, in cm as the picture writes it)."""
+        raw, dead, filtered = (round(100 * e) for e in self.rms_errors_all())  # cm, as the picture writes them
+        verdict = ", so the filter is the closest" if filtered < min(raw, dead) else ""
+        sensor = f"{self.run.sensor_std:{SENSOR_FORMAT}}"
+        return (
+            f"Run {self.seed}, step {self.frame}, sensor noise σ = {sensor} m: so far the filtered estimate has been "
+            f"{filtered} cm from the truth (RMS), the raw pings {raw} cm and dead reckoning {dead} cm{verdict}."
+        )
+
 
 def raw_vs_filtered(seed: int = 0) -> Demo:
     """Demo "raw vs filtered" (chapter 0): the first frame shows a whole run and each
@@ -73,8 +85,8 @@ def raw_vs_filtered(seed: int = 0) -> Demo:
     model = RawVsFiltered(seed)
     view = raw_vs_filtered_view(N_STEPS)
     caption = (
-        "<b>Raw vs filtered.</b> Grey: the true position (the robot never sees it). "
-        "Orange dots: noisy sensor pings; orange line: trusting each ping. "
+        "<b>Raw vs filtered.</b> Grey dotted line: the true position (the robot never sees it). "
+        "Orange dots: noisy sensor pings; orange dash-dot line: trusting each ping. "
         "Purple dashes: dead reckoning, counting the commanded moves only. "
         "Teal: the Kalman filter's estimate (band = ±1σ). Lower panel: how far each one is from the truth. "
         "Press <i>Run</i> to replay time, drag <i>sensor noise</i>, or draw <i>New noise</i>."
@@ -85,10 +97,11 @@ def raw_vs_filtered(seed: int = 0) -> Demo:
         model=model,
         renderer=FigureRenderer(view.fig, view.moving),
         draw=partial(update_raw_vs_filtered, view, model),
+        describe=model.describe,
         frames=N_STEPS,
         controls={
             "sensor_noise": (
-                slider(widgets.FloatSlider, "sensor noise σ (m)", SENSOR_STD, 0.05, SENSOR_MAX, 0.05),
+                slider(widgets.FloatSlider, "sensor noise σ (m)", SENSOR_STD, 0.05, SENSOR_MAX, 0.05, SENSOR_FORMAT),
                 model.set_sensor_std,
             ),
             "new_noise": (button("New noise", icon="refresh", tooltip="Draw a new random run"), model.new_noise),

@@ -10,7 +10,7 @@ from ..filters.ukf import unscented_1d
 from ..plots.style import FigureRenderer
 from ..plots.ukf import sigma_points_view, update_sigma_points_view
 from ..sim.curves import FUNCTIONS, GaussianThroughCurve
-from ._base import Demo, slider
+from ._base import Demo, shown, slider
 
 N_SAMPLES = 20_000  # fixed standard-normal draws, rescaled by the sliders
 M_RANGE = (-2.5, 2.5)  # the input mean: the worked example's m = 2 has room on both sides
@@ -18,6 +18,17 @@ X_RANGE = (-5.5, 5.5)  # the sigma points reach m +- sqrt(1 + lam) s = 2.5 + 2 *
 # The output axis of each function (chapter 7's functions over this wider input range).
 OUTPUT_LIMITS = {"x²": (-3.0, 31.0), "sin x": (-1.25, 1.25), "range √(x² + 1)": (0.5, 6.0)}
 DISPLAY_WIDTH = 848  # CSS px: a laptop's notebook width, where the picture and its controls fit the screen
+SLIDER_FORMAT = ".2f"  # the readout of the m and s sliders; the description writes them the same way
+LAM_FORMAT = ".1f"  # the readout of the lambda slider
+SAME_MEAN = 0.001  # two means this close count as equally close to the truth (the readout's last digit)
+SAME_VARIANCE = 0.01  # two variances whose errors differ by under 1 % of the true variance: equally close
+
+
+def closer(ukf_error: float, ekf_error: float, tie: float) -> str:
+    """Which answer is nearer the truth, "UKF", "EKF" or "tie", given their errors."""
+    if abs(ukf_error - ekf_error) < tie:
+        return "tie"
+    return "UKF" if ukf_error < ekf_error else "EKF"
 
 
 class SigmaPointsModel(GaussianThroughCurve):
@@ -48,6 +59,36 @@ class SigmaPointsModel(GaussianThroughCurve):
         m2, s2 = self.m * self.m, self.s * self.s
         return m2 + s2, 4 * m2 * s2 + 2 * s2 * s2  # E[x²], Var[x²] for x ~ N(m, s²)
 
+    def describe(self) -> str:
+        """What the picture shows: where the sigma points sit, and which answer, the UKF's or the EKF's,
+        is nearer the true output's mean and variance (the exact ones for x², else the sampled ones)."""
+        chi, w = self.sigma_points()
+        left, right = sorted(chi[1:])
+        (mean_u, var_u), (mean_e, var_e) = self.ukf(), self.ekf()
+        truth = "exact" if self.exact() is not None else "sampled"
+        mean_t, var_t = self.exact() if truth == "exact" else self.sampled()
+        x = [shown(value, SLIDER_FORMAT) for value in (left, self.m, right)]
+        points = (
+            f"With f = {self.function}, m = {shown(self.m, SLIDER_FORMAT)}, s = {shown(self.s, SLIDER_FORMAT)} "
+            f"and λ = {shown(self.lam, LAM_FORMAT)}, the sigma points sit at {x[0]}, {x[1]} and {x[2]}, "
+            f"the middle one weighing {shown(w[0], '.2f')}."
+        )
+        by_mean = closer(abs(mean_u - mean_t), abs(mean_e - mean_t), SAME_MEAN)
+        by_var = closer(abs(var_u - var_t) / var_t, abs(var_e - var_t) / var_t, SAME_VARIANCE)
+        if by_mean == by_var:
+            verdict = "the two are as close" if by_mean == "tie" else f"the {by_mean} is closer in both"
+        else:
+            verdict = ", ".join(
+                f"the {who} is closer in the {what}" if who != "tie" else f"the two are as close in the {what}"
+                for who, what in ((by_mean, "mean"), (by_var, "variance"))
+            )
+        answers = (
+            f"Against the {truth} output's mean {shown(mean_t, '.3f')} and variance {shown(var_t, '.4g')}, the UKF "
+            f"gives {shown(mean_u, '.3f')} and {shown(var_u, '.4g')}, the EKF {shown(mean_e, '.3f')} and "
+            f"{shown(var_e, '.4g')}: {verdict}."
+        )
+        return f"{points} {answers}"
+
 
 def sigma_points(seed: int = 0) -> Demo:
     """Demo "sigma points on y = x²" (chapter 9): three sigma points of the input Gaussian
@@ -72,15 +113,16 @@ def sigma_points(seed: int = 0) -> Demo:
         model=model,
         renderer=FigureRenderer(view.fig, view.moving),
         draw=lambda: update_sigma_points_view(view, model),
+        describe=model.describe,
         controls={
             "function": (
                 widgets.ToggleButtons(options=list(FUNCTIONS), value=model.function, description="f(x)"),
                 model.set_function,
             ),
-            "m": (slider(widgets.FloatSlider, "input mean m", model.m, *M_RANGE, 0.05), model.set_m),
-            "s": (slider(widgets.FloatSlider, "input width s", model.s, 0.05, 1.5, 0.05), model.set_s),
+            "m": (slider(widgets.FloatSlider, "input mean m", model.m, *M_RANGE, 0.05, SLIDER_FORMAT), model.set_m),
+            "s": (slider(widgets.FloatSlider, "input width s", model.s, 0.05, 1.5, 0.05, SLIDER_FORMAT), model.set_s),
             "lam": (
-                slider(widgets.FloatSlider, "spread λ", model.lam, 0.0, 3.0, 0.1, readout_format=".1f"),
+                slider(widgets.FloatSlider, "spread λ", model.lam, 0.0, 3.0, 0.1, readout_format=LAM_FORMAT),
                 model.set_lam,
             ),
         },

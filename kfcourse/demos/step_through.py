@@ -8,12 +8,13 @@ import numpy as np
 from ..filters.kalman_1d import kf_1d_gain, kf_1d_predict, kf_1d_update
 from ..plots.step_through import step_through_view, update_step_through
 from ..plots.style import FigureRenderer
-from ._base import Demo, button, slider
+from ._base import Demo, button, shown, slider
 
 MU0, VAR0 = 2.0, 0.40  # the worked example's prior at time step 0 (chapter 3): m, m^2
 U = 1.0  # m commanded each step
 WORKED_Z = (3.6, 4.7)  # the worked cycles' readings at time steps 1 and 2 (m)
 SENSOR_VAR = 0.1  # m^2: noise of the simulated readings after step 2 (the worked example's Q)
+NOISE_FORMAT = ".3g"  # the R and Q sliders' readouts
 
 
 class StepThroughModel:
@@ -118,6 +119,29 @@ class StepThroughModel:
                 mu, var = mu_new, var_new
         self.mu, self.var = mu, var
 
+    def describe(self) -> str:
+        """What the picture shows in a sentence: what the last press did (or why an Update was refused),
+        the belief now, and R and Q as their sliders show them."""
+        noise = f"R = {shown(self.R, NOISE_FORMAT)}, Q = {shown(self.Q, NOISE_FORMAT)}"
+        belief = f"mean {self.mu:.3f}, variance {self.var:.3f}"
+        if self.note:
+            why = "no reading at step 0" if self.k == 0 else f"step {self.k}'s reading is already used, once is enough"
+            return f"Update refused ({why}): the belief stays at {belief}; {noise}."
+        if self.phase == "prior":
+            return f"Step 0, the prior: {belief}; press Predict. {noise}."
+        mu_bar, var_bar = self.predicted
+        mu_before, var_before = self.before
+        if self.phase == "predicted":
+            return (
+                f"Predict to step {self.k}: the mean moved +{U:.0f} m from {mu_before:.3f} to {self.mu:.3f} and "
+                f"the variance grew by R from {var_before:.3f} to {self.var:.3f}; {noise}."
+            )
+        return (
+            f"Update with step {self.k}'s reading z = {self.z:.2f}: K = {self.K:.3f}, so the mean moved {self.K:.3f} "
+            f"of the way from the prediction {mu_bar:.3f} towards z, to {self.mu:.3f}, and the variance shrank "
+            f"from {var_bar:.3f} to {self.var:.3f}; {noise}."
+        )
+
 
 def _table(rows) -> str:
     """The last few completed updates as a hand table (one row per update, as in chapter 3)."""
@@ -156,8 +180,8 @@ def step_through(seed: int = 0) -> Demo:
         table.value = _table(model.rows)
 
     caption = (
-        "<b>Step through the 1-D Kalman filter.</b> Dashed teal: the belief before the step; "
-        "purple: the prediction; orange: the measurement N(z, Q); teal: the updated belief. "
+        "<b>Step through the 1-D Kalman filter.</b> Thin teal: the belief before the step; "
+        "dashed purple: the prediction; dash-dot orange: the measurement N(z, Q); teal: the updated belief. "
         "Each <i>Predict</i> moves the robot +1 m to the next time step; <i>Update</i> reads the sensor at the step "
         "the robot is at (3.6 m at step 1, 4.7 m at step 2, then simulated readings). A step has one reading: a "
         "second Update in a row is refused, since using the same reading twice would count it twice. "
@@ -169,6 +193,7 @@ def step_through(seed: int = 0) -> Demo:
         model=model,
         renderer=FigureRenderer(view.fig, view.moving),
         draw=draw,
+        describe=model.describe,
         controls={
             "predict": (button("Predict", icon="arrow-right", tooltip="Move +1 m: shift and widen"), model.predict),
             "update": (
@@ -185,4 +210,4 @@ def step_through(seed: int = 0) -> Demo:
 
 def log_slider(description: str, value: float) -> widgets.FloatLogSlider:
     """A noise slider from 0.001 to 10 on a log scale."""
-    return slider(widgets.FloatLogSlider, description, value, -3, 1, 0.1, readout_format=".3g", base=10)
+    return slider(widgets.FloatLogSlider, description, value, -3, 1, 0.1, readout_format=NOISE_FORMAT, base=10)

@@ -8,17 +8,19 @@ import numpy as np
 from ..plots import palette
 from ..plots.style import FigureRenderer
 from ..plots.tracking import tracker_view, update_tracker_view
-from ..sim.target import SENSOR_STD, START_STEPS, TargetRun, filter_target, process_noise, simulate_target
-from ._base import Demo, button, slider
+from ..sim.target import SENSOR_STD, START_STEPS, TargetRun, filter_target, nees, process_noise, simulate_target
+from ._base import Demo, button, shown, slider
 
 ACCEL_TUNED = 10.0  # m²/s⁴, the filter's assumed acceleration variance to start with
 K_JITTERY = 0.9  # position gain above which the filter copies the readings
 K_COASTING = 0.05  # position gain below which the filter coasts on its motion model
+SENSOR_FORMAT = ".1f"  # the sensor σ slider's readout
+TUNING_FORMAT = ".3g"  # the readouts of the log sliders Q and σₐ²
 DISPLAY_WIDTH = 848  # CSS px: a laptop's notebook width, where the picture and its controls fit the screen
 CAPTION = (
-    "<b>2-D tracker.</b> Grey: the true path, position and velocity (the line reaches where the target is 1 s "
-    "later). Orange: readings. Teal: the estimate, its trail, velocity and 2σ ellipse; dotted: where it goes "
-    "next. <i>sensor σ</i> and <i>New run</i> change the world (the readings); <i>Q</i> (× the true one) and "
+    "<b>2-D tracker.</b> Grey, dotted: the true path, position and velocity (the line reaches where the target is 1 s "
+    "later). Orange: readings. Teal: the estimate, its trail, velocity and 2σ ellipse; pale thin line: where it "
+    "goes next. <i>sensor σ</i> and <i>New run</i> change the world (the readings); <i>Q</i> (× the true one) and "
     "<i>σₐ²</i> (which sets R) change only what the filter <i>assumes</i>."
 )
 
@@ -111,6 +113,21 @@ class Tracker:
         raw = np.linalg.norm(self.run.z[:k] - truth, axis=1).mean()
         return float(est), float(raw)
 
+    def describe(self) -> str:
+        """What the picture shows in one short sentence (one line of the output, so that the picture and its
+        controls fit a laptop's screen): the run and the step, the world's and the filter's settings as their
+        sliders show them, and whether the true target is inside the estimate's 2σ ellipse.  The readout under
+        the picture gives the numbers: the velocities, the error, the gain and the honesty test."""
+        k = self.frame
+        p_true, p_est, Sig = self.run.truth[k, :2], self.est.mu[k, :2], self.est.Sig[k, :2, :2]
+        inside = "inside" if nees(p_true, p_est, Sig) <= 2.0**2 else "outside"  # on the 2σ ellipse NEES = 2²
+        sensor = shown(self.sensor_std, SENSOR_FORMAT)
+        q, accel = shown(self.q_factor, TUNING_FORMAT), shown(self.accel_var, TUNING_FORMAT)
+        return (
+            f"Run {self.seed}, step {k} (t = {self.run.t[k]:.1f} s), sensor σ = {sensor} m, filter's Q = {q} × true, "
+            f"σₐ² = {accel}: the truth is {inside} the 2σ ellipse."
+        )
+
 
 def _readout(model: Tracker, lo, hi) -> str:
     """The four lines under the picture: the velocities; the errors and the ellipse (said to reach past the
@@ -123,7 +140,7 @@ def _readout(model: Tracker, lo, hi) -> str:
     h = est.honesty()
     return (
         f"<div style='font-size:13px;line-height:1.45'>t = {run.t[k]:.1f} s &nbsp; velocity (m/s): "
-        f"<span style='color:{palette.ESTIMATE}'>estimated ({v_est[0]:+.2f}, {v_est[1]:+.2f})</span>, "
+        f"<span style='color:{palette.ESTIMATE_TEXT}'>estimated ({v_est[0]:+.2f}, {v_est[1]:+.2f})</span>, "
         f"true ({v_true[0]:+.2f}, {v_true[1]:+.2f}) &nbsp; run {model.seed}<br>"
         f"estimate {est.position_error()[k]:.2f} m off, 2σ ellipse {radius:.2f} m{past}; "
         f"mean off so far: estimate {e_est:.2f} m, readings {e_raw:.2f} m<br>"
@@ -157,19 +174,20 @@ def tracker(seed: int = 0) -> Demo:
         model=model,
         renderer=FigureRenderer(view.fig, view.moving),
         draw=draw,
+        describe=model.describe,
         frames=model.run.t.size,
         controls={
             "sigma": (
-                slider(widgets.FloatSlider, "sensor σ (m)", SENSOR_STD, 0.1, 5.0, 0.1, ".1f"),
+                slider(widgets.FloatSlider, "sensor σ (m)", SENSOR_STD, 0.1, 5.0, 0.1, SENSOR_FORMAT),
                 model.set_sensor_std,
             ),
             "new": (button("New run", "refresh", "new sensor noise, same path"), model.new_run),
             "Q": (
-                slider(widgets.FloatLogSlider, "filter's Q (× true)", 1.0, -3, 4, 0.1, ".3g", base=10),
+                slider(widgets.FloatLogSlider, "filter's Q (× true)", 1.0, -3, 4, 0.1, TUNING_FORMAT, base=10),
                 model.set_q_factor,
             ),
             "R": (
-                slider(widgets.FloatLogSlider, "filter's σₐ² (m²/s⁴)", ACCEL_TUNED, -3, 7, 0.1, ".3g", base=10),
+                slider(widgets.FloatLogSlider, "filter's σₐ² (m²/s⁴)", ACCEL_TUNED, -3, 7, 0.1, TUNING_FORMAT, base=10),
                 model.set_accel_var,
             ),
         },

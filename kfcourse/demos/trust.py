@@ -10,7 +10,10 @@ from ..filters.gaussian import fuse
 from ..filters.kalman_1d import kf_1d_gain
 from ..plots.style import FigureRenderer
 from ..plots.trust import trust_view, update_trust
-from ._base import Demo, slider
+from ._base import Demo, shown, slider
+
+MEAN_FORMAT = ".2f"  # the mean sliders' readouts
+VARIANCE_FORMAT = ".3f"  # the variance sliders' readouts
 
 
 class TrustModel:
@@ -44,6 +47,25 @@ class TrustModel:
         """The fused mean and variance (inverse-variance weighting, the same as the Kalman update)."""
         return fuse(self.mu_pred, self.var_pred, self.z, self.var_meas)
 
+    def describe(self) -> str:
+        """What the picture shows in one sentence: the gain K as the share of the way from the prediction
+        to the measurement, which of the two is surer, and the fused variance, narrower than both."""
+        mu_f, var_f = self.fused()
+        prediction = f"mean {shown(self.mu_pred, MEAN_FORMAT)}, variance {shown(self.var_pred, VARIANCE_FORMAT)}"
+        measurement = f"z = {shown(self.z, MEAN_FORMAT)}, variance {shown(self.var_meas, VARIANCE_FORMAT)}"
+        if shown(self.var_pred, VARIANCE_FORMAT) != shown(self.var_meas, VARIANCE_FORMAT):  # one is surer
+            if self.K < 0.5:
+                prediction += ", the surer one"
+            else:
+                measurement += ", the surer one"
+        share = 100 * self.K
+        share = f"{share:.0f}" if 1 <= share <= 99 else f"{share:.1f}"  # never "0 %" or "100 %" of the way
+        narrower = "narrower than both" if var_f < min(self.var_pred, self.var_meas) else "not narrower than both"
+        return (
+            f"K = {self.K:.3f}: the fused mean {shown(mu_f, '.3f')} lies {share} % of the way from the prediction "
+            f"({prediction}) to the measurement ({measurement}); its variance {var_f:.3g} is {narrower}."
+        )
+
 
 def trust_slider(seed: int = 0) -> Demo:
     """Demo "trust slider" (chapter 4): drag the two variances (and means) and
@@ -68,10 +90,14 @@ def trust_slider(seed: int = 0) -> Demo:
         model=model,
         renderer=FigureRenderer(view.fig, view.moving),
         draw=partial(update_trust, view, model),
+        describe=model.describe,
         controls={
-            "mu_pred": (slider(widgets.FloatSlider, "prediction mean", m.mu_pred, -4.0, 4.0, 0.1), m.set_mu_pred),
+            "mu_pred": (
+                slider(widgets.FloatSlider, "prediction mean", m.mu_pred, -4.0, 4.0, 0.1, MEAN_FORMAT),
+                m.set_mu_pred,
+            ),
             "var_pred": (log_slider("prediction variance", m.var_pred), m.set_var_pred),
-            "z": (slider(widgets.FloatSlider, "measurement z", m.z, -4.0, 4.0, 0.1), m.set_z),
+            "z": (slider(widgets.FloatSlider, "measurement z", m.z, -4.0, 4.0, 0.1, MEAN_FORMAT), m.set_z),
             "var_meas": (log_slider("measurement variance", m.var_meas), m.set_var_meas),
         },
         layout=[["mu_pred", "var_pred"], ["z", "var_meas"]],
@@ -80,4 +106,4 @@ def trust_slider(seed: int = 0) -> Demo:
 
 def log_slider(description: str, value: float) -> widgets.FloatLogSlider:
     """A variance slider from 0.01 to 10 on a log scale."""
-    return slider(widgets.FloatLogSlider, description, value, -2, 1, 0.05, ".3f", base=10)
+    return slider(widgets.FloatLogSlider, description, value, -2, 1, 0.05, VARIANCE_FORMAT, base=10)

@@ -12,6 +12,7 @@ pixels per CSS pixel, while the page still shows it at the same size.
 from __future__ import annotations
 
 import base64
+import html
 import io
 
 import numpy as np
@@ -23,6 +24,7 @@ from matplotlib.ticker import FuncFormatter
 from PIL import Image
 
 from . import palette
+from .describe import figure_alt
 
 STYLE = {
     "font.size": 10,
@@ -42,7 +44,9 @@ class CourseFigure(Figure):
     """A Figure that shows itself as a PNG when it is the last value of a notebook cell.
 
     The notebook gets a PNG with ``PIXEL_DENSITY`` pixels per CSS pixel, shown at the
-    figure's own size (``width`` x ``dpi`` CSS pixels): sharp on a HiDPI screen.
+    figure's own size (``width`` x ``dpi`` CSS pixels): sharp on a HiDPI screen.  It comes
+    as an HTML ``<img>`` whose alt text (:func:`~kfcourse.plots.describe.figure_alt`) says
+    what the figure shows, for a screen reader; a frontend that shows only text shows that.
     """
 
     def _repr_png_(self) -> bytes:
@@ -56,7 +60,10 @@ class CourseFigure(Figure):
             png = renderer.png()
         finally:
             self.set_dpi(dpi)
-        return {"image/png": base64.b64encode(png).decode("ascii")}, {"image/png": {"width": round(width)}}
+        alt = figure_alt(self)
+        src = "data:image/png;base64," + base64.b64encode(png).decode("ascii")
+        img = f'<img src="{src}" width="{round(width)}" alt="{html.escape(alt)}">'
+        return {"text/html": img, "text/plain": alt}, {}
 
 
 def new_figure(width: float = 8.0, height: float = 3.6, dpi: int = 80, **subplots) -> tuple[Figure, object]:

@@ -46,7 +46,7 @@ def test_controls_mistune_the_named_noise_and_keep_the_world():
     curve = demo.view.curve
     np.testing.assert_allclose(curve.get_ydata(), np.clip(m.avg_nees, 0.5, 500.0))
     np.testing.assert_allclose(curve.get_xdata(), m.batch.dt * np.arange(N_STEPS))
-    assert f"{m.avg_nees.mean():.2f}" in demo.children[2].value
+    assert f"{m.avg_nees.mean():.2f}" in readout(demo)
 
 
 def test_factor_reruns_where_it_is_let_go_and_never_redraws_the_axes():
@@ -86,7 +86,7 @@ def test_factor_extremes_stay_finite_and_on_the_right_side(which):
         set_mistune(demo, which, factor)
         assert np.isfinite(m.avg_nees).all() and (m.avg_nees > 0).all()
         assert m.verdict().startswith(verdict)
-        assert "nan" not in demo.children[2].value.lower()
+        assert "nan" not in readout(demo).lower()
 
 
 def test_new_run_draws_new_tracks_and_keeps_the_mistuning():
@@ -99,7 +99,7 @@ def test_new_run_draws_new_tracks_and_keeps_the_mistuning():
     assert m.which == "R" and m.factor == pytest.approx(0.1)
     mu, Sig = filter_tracks(m.batch, *m.assumed())
     np.testing.assert_allclose(m.avg_nees, nees(m.batch.truth, mu, Sig).mean(axis=0))
-    assert bytes(demo.image.value) != picture and "run 1:" in demo.children[2].value
+    assert bytes(demo.image.value) != picture and "run 1:" in readout(demo)
 
 
 def test_picture_and_controls_fit_a_laptop():

@@ -25,6 +25,7 @@ LAPTOP_PX, OUTPUT_PX = 680, 848
 ROW_PX = 34  # a row of sliders, buttons or toggles: 28 px high with its margins, rounded up
 READOUT_FONT_PX, READOUT_LINE = 13, 1.5  # the readouts' font size and line height, rounded up
 READOUT_MARGIN_PX = 4
+DESCRIPTION_LINE, DESCRIPTION_MARGIN_PX = 1.4, 6  # the description under the picture: one line (describe.css)
 
 
 def make(seed=0):
@@ -217,12 +218,13 @@ def readout_lines(text: str) -> int:
 
 
 def estimated_height(demo, lines: int) -> float:
-    """Picture + controls (CSS px): the picture at the demo's width and its own shape, a readout of ``lines``
-    lines, and one ROW_PX per row of controls."""
+    """Picture + controls (CSS px): the picture at the demo's width and its own shape, its one-line
+    description, a readout of ``lines`` lines, and one ROW_PX per row of controls."""
     width, height = Image.open(io.BytesIO(bytes(demo.image.value))).size
-    rows = [c for c in demo.children[2:] if "kf-readout" not in c._dom_classes]
+    rows = [c for c in demo.children[2:] if c is not demo.description and "kf-readout" not in c._dom_classes]
     readout_px = lines * READOUT_FONT_PX * READOUT_LINE + READOUT_MARGIN_PX
-    return min(demo.display_width, OUTPUT_PX) * height / width + readout_px + len(rows) * ROW_PX
+    description_px = READOUT_FONT_PX * DESCRIPTION_LINE + DESCRIPTION_MARGIN_PX
+    return min(demo.display_width, OUTPUT_PX) * height / width + description_px + readout_px + len(rows) * ROW_PX
 
 
 def rows_fit_the_output(demo) -> bool:

@@ -8,7 +8,9 @@ width); a page without a kernel gets a PNG of the first frame.
 from __future__ import annotations
 
 import base64
+import html
 import io
+import re
 
 import numpy as np
 import pytest
@@ -117,9 +119,12 @@ def test_the_static_picture_follows_the_demo():
 
 def test_a_chart_in_a_notebook_is_drawn_for_a_hidpi_screen_at_its_own_size():
     fig, _, _ = chart(8.0, 3.6)  # 640 x 288 CSS px at 80 dpi
-    data, metadata = fig._repr_mimebundle_()
-    png = picture(base64.b64decode(data["image/png"]))
-    assert metadata["image/png"]["width"] == 640
+    data, _ = fig._repr_mimebundle_()
+    img = re.fullmatch(r'<img src="data:image/png;base64,([^"]+)" width="(\d+)" alt="([^"]+)">', data["text/html"])
+    assert img is not None, data["text/html"][:200]
+    png = picture(base64.b64decode(img[1]))
+    assert int(img[2]) == 640
+    assert html.unescape(img[3]) == data["text/plain"] and img[3].startswith("Figure")
     assert png.size == (PIXEL_DENSITY * 640, PIXEL_DENSITY * 288)
     assert fig.dpi == 80  # the figure itself is left as it was
     assert picture(fig._repr_png_()).size == (640, 288)
