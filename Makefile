@@ -14,6 +14,7 @@ APP_PORT ?= 8866
 WORK     ?= my-notebooks
 CH       ?=
 STAMP    := $(VENV)/.kfcourse-installed
+AXE      := node_modules/axe-core/axe.min.js
 
 .PHONY: lab app restore badges test lint bench notebooks site pins clean
 
@@ -50,13 +51,19 @@ FACTS    := tests/sim tests/demos tests/plots tests/test_rounding.py notebooks
 NO_AVX512 := AVX512_ICL AVX512_SPR X86_V4
 UNIT     := $(BIN)/pytest -m "not browser" -n 2 --dist loadfile --nbval-lax --nbval-current-env --nbval-cell-timeout=120
 
-test: $(STAMP) lint
+test: $(STAMP) lint $(AXE)
 	$(UNIT) tests notebooks
 	NPY_DISABLE_CPU_FEATURES="$(NO_AVX512)" $(UNIT) $(FACTS)
 	NPY_DISABLE_CPU_FEATURES="$(NO_AVX512) X86_V3" $(UNIT) $(FACTS)
 	$(UNIT) --perturb=1e-12 $(FACTS)
 	$(UNIT) --perturb=-1e-12 $(FACTS)
 	$(BIN)/pytest -m browser tests/browser
+
+# axe-core, the accessibility checker of the browser tests, at the version package-lock.json pins:
+# installed again whenever the lock file is newer than it.
+$(AXE): package-lock.json
+	npm ci --no-audit --no-fund
+	@touch $@
 
 lint: $(STAMP)
 	$(BIN)/ruff check .
@@ -97,4 +104,4 @@ pins:
 	rm -rf .pins-venv
 
 clean:
-	rm -rf $(VENV) .pytest_cache .ruff_cache .hypothesis tests/browser/artifacts
+	rm -rf $(VENV) node_modules .pytest_cache .ruff_cache .hypothesis tests/browser/artifacts

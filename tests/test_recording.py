@@ -17,7 +17,7 @@ from PIL import Image
 
 import kfcourse as kf
 from kfcourse.plots.style import PIXEL_DENSITY
-from tools.recording import HOLD_MS, frames_to_record, record_run
+from tools.recording import HOLD_MS, description_at, frames_to_record, record_run
 
 DEMOS = kf.demos.__all__
 # The demos with a run to play, named here so that collecting the tests builds no demo;
@@ -99,3 +99,14 @@ def test_recording_needs_a_run_and_sensible_settings():
         record_run(demo, quality=101)
     with pytest.raises(ValueError, match="last"):
         frames_to_record(5, 4, 10)
+
+
+def test_the_description_of_a_frame_is_read_at_rest_and_the_demo_left_where_it_was():
+    demo = kf.demos.tracker(seed=0)
+    frame = demo.controls["frame"]
+    start, before = frame.value, demo.description.text
+    last = description_at(demo, frame.max)
+    assert last != before and f"step {frame.max}" in last
+    assert frame.value == start and demo.description.text == before
+    with pytest.raises(ValueError, match="k must be a frame"):
+        description_at(demo, frame.max + 1)

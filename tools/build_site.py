@@ -12,10 +12,18 @@ of MathJax 2.7 from the ``jupyter-server-mathjax`` package (requirements-dev.txt
 
 A page has no kernel, so a demo's live widget cannot show there.  A demo shown as the last
 value of a cell also hands the notebook a PNG of the picture it shows at first
-(``Demo._repr_mimebundle_``); the page shows that picture with the demo's caption under it,
-and for a demo with Run/Pause also a short recording of its run (``tools/recording.py``, run
-in the same kernel, saved as a ``.webp`` file in ``media/``), as many pixels wide as the
-still and shown as wide.  ``site/demos.json`` lists the pages and their demo pictures.
+(``Demo._repr_mimebundle_``); the page shows that picture, with the demo's description (one
+sentence from its numbers: the picture's alt text, and the first line under it) and its
+caption under it.  A demo with Run/Pause also gets a recording of its run
+(``tools/recording.py``, run in the same kernel, saved as a ``.webp`` file in ``media/``), as
+many pixels wide as the still and shown in its place, but only when the reader presses
+"Play the run" (a toggle button; pressed again, the still comes back): nothing on a page
+moves by itself (WCAG 2.2.2).  ``site/demos.json`` lists the pages and their demo pictures.
+
+Every page is meant to pass the WCAG 2.1 A and AA checks of axe-core
+(tests/browser/test_site.py): the chapter inside a ``<main>`` landmark with the navigation
+outside it, code colours and ``In [n]:`` prompts at 4.5:1 contrast or more, links in running
+text underlined, and one small inline script (the play buttons), nothing from outside the site.
 
 The ``# NBVAL_CHECK_OUTPUT`` line that opens the cells whose printed numbers the tests check
 is left out of the pages: it speaks to the test runner, not to a reader.
@@ -26,6 +34,7 @@ from __future__ import annotations
 import argparse
 import base64
 import html
+import io
 import json
 import re
 import shutil
@@ -38,6 +47,9 @@ import jinja2
 import nbformat
 from nbclient import NotebookClient
 from nbconvert import HTMLExporter
+from PIL import Image
+
+from kfcourse.plots.palette import ESTIMATE_TEXT
 
 ROOT = Path(__file__).resolve().parents[1]
 WIDGET_VIEW = "application/vnd.jupyter.widget-view+json"
@@ -49,8 +61,9 @@ RECORDING = ROOT / "tools" / "recording.py"
 NBVAL_MARKER = re.compile(r"\A# NBVAL_[A-Z_]+[ \t]*\r?(\n|\Z)")  # a first line that speaks to nbval alone
 
 # Run in the notebook's kernel after a cell that showed a demo: its caption (the first of the
-# demo's rows), and for a demo with Run/Pause a recording of its run, made by tools/recording.py
-# loaded from its file.  The widget is found by the model id of its view.
+# demo's rows) and its description (the sentence that says what its picture shows), and for a
+# demo with Run/Pause a recording of its run and the description of the run's last frame, made
+# by tools/recording.py loaded from its file.  The widget is found by the model id of its view.
 PROBE = """\
 import base64 as _b64, importlib.util as _iu, ipywidgets as _w
 from IPython.display import display as _display
@@ -58,16 +71,20 @@ _demo = _w.widget_serialization["from_json"]("IPY_MODEL_{model_id}", None)
 _spec = _iu.spec_from_file_location("kfsite_recording", {recording!r})
 _recording = _iu.module_from_spec(_spec)
 _spec.loader.exec_module(_recording)
+_runs = "frame" in _demo.controls
 _display({{"{mime}": {{
     "caption": _demo.children[0].value,
-    "recording": _b64.b64encode(_recording.record_run(_demo)).decode() if "frame" in _demo.controls else None,
+    "description": _demo.description.text,
+    "recording": _b64.b64encode(_recording.record_run(_demo)).decode() if _runs else None,
+    "last_frame": _recording.description_at(_demo, _demo.controls["frame"].max) if _runs else None,
 }}}}, raw=True)
-del _demo, _spec, _recording
+del _demo, _spec, _recording, _runs
 """
 
 TEMPLATE = r"""{%- extends 'index.html.j2' -%}
 {%- block html_head_js_requirejs -%}{%- endblock html_head_js_requirejs -%}
 {%- block jupyter_widgets -%}{%- endblock jupyter_widgets -%}
+{%- block html_head_js_mermaidjs -%}{%- endblock html_head_js_mermaidjs -%}
 {%- block html_head_js_mathjax -%}
 <script type="text/x-mathjax-config">
 MathJax.Hub.Config({
@@ -81,25 +98,100 @@ MathJax.Hub.Config({
 </script>
 <script src="{{ resources.mathjax_url }}"></script>
 {%- endblock html_head_js_mathjax -%}
-{%- block extra_css -%}
+{%- block html_head_css -%}
 <style type="text/css">
-  nav.kf-nav { display: flex; justify-content: space-between; gap: 1em; padding: 0.6em 1em;
-    font: 14px/1.4 var(--jp-ui-font-family, sans-serif); border-bottom: 1px solid #ddd; }
-  nav.kf-nav.kf-bottom { border-top: 1px solid #ddd; border-bottom: none; margin-top: 2em; }
-  div.kf-demo-static { max-width: 950px; }
-  div.kf-demo-static figure { margin: 0.5em 0 1em; }
-  div.kf-demo-static img { max-width: 100%; height: auto; display: block; margin: 0.4em 0; }
-  div.kf-demo-static .kf-note { color: #666; font-size: 12px; font-style: italic; margin-top: 0.3em; }
+{{ resources.kf_css }}
 </style>
-{%- endblock extra_css -%}
+{%- endblock html_head_css -%}
 {%- block body_header -%}
-{{ super() }}
+<body class="jp-Notebook" data-jp-theme-light="true" data-jp-theme-name="JupyterLab Light">
 {{ resources.kf_nav }}
+<main>
 {%- endblock body_header -%}
 {%- block body_footer -%}
-{{ resources.kf_nav | replace('class="kf-nav"', 'class="kf-nav kf-bottom"') }}
-{{ super() }}
+</main>
+{{ resources.kf_nav_bottom }}
+<script>
+{{ resources.kf_script }}
+</script>
+</body>
 {%- endblock body_footer -%}
+"""
+
+# After JupyterLab's own styles, so that these win.  The light theme's code colours and its
+# dimmed prompts fall below WCAG AA: here every code colour is at least 4.5:1 on the code
+# background (#f5f5f5), the prompts at least 4.5:1 on white (the ratios in the comments),
+# with the hues of JupyterLab's theme kept.
+SITE_CSS = """
+:root {
+  --jp-mirror-editor-keyword-color: #007000;    /* 5.8:1 */
+  --jp-mirror-editor-builtin-color: #007000;
+  --jp-mirror-editor-number-color: #0b6e4f;     /* 5.7:1 */
+  --jp-mirror-editor-comment-color: #3b6e6e;    /* 5.3:1 */
+  --jp-mirror-editor-operator-color: #8b1ed6;   /* 5.9:1 */
+  --jp-mirror-editor-meta-color: #8b1ed6;
+  --jp-mirror-editor-string-color: #ba2121;     /* 5.8:1 */
+  --jp-mirror-editor-punctuation-color: #0055aa; /* 6.7:1 */
+  --jp-mirror-editor-property-color: #0055aa;
+  --jp-mirror-editor-def-color: #0000ff;        /* 7.9:1 */
+  --jp-mirror-editor-atom-color: #4646d8;       /* 6.2:1 */
+  --jp-mirror-editor-variable-color: #212121;   /* 14.8:1 */
+  --jp-mirror-editor-qualifier-color: #555555;  /* 6.8:1 */
+  --jp-mirror-editor-bracket-color: #6b6b52;    /* 5.0:1 */
+  --jp-mirror-editor-tag-color: #117700;        /* 5.3:1 */
+  --jp-mirror-editor-attribute-color: #0000cc;  /* 10.3:1 */
+  --jp-mirror-editor-link-color: #0000cc;
+  --jp-mirror-editor-header-color: #0000ff;
+  --jp-mirror-editor-quote-color: #007a00;      /* 5.1:1 */
+  --jp-mirror-editor-error-color: #d00000;      /* 5.2:1 */
+  --jp-mirror-editor-hr-color: #6e6e6e;
+  --jp-cell-prompt-not-active-opacity: 1;
+  --jp-cell-prompt-not-active-font-color: #616161; /* 6.2:1 on white */
+  --jp-cell-inprompt-font-color: #2a6fab;       /* 5.3:1 on white */
+  --jp-cell-outprompt-font-color: #a8462a;      /* 5.9:1 on white */
+}
+/* a link in running text is underlined, not told apart by its colour alone */
+.jp-RenderedHTMLCommon a:link, .jp-RenderedHTMLCommon a:visited, .jp-RenderedText pre a:link,
+.jp-RenderedText pre a:visited { text-decoration: underline; }
+nav.kf-nav { display: flex; justify-content: space-between; gap: 1em; padding: 0.6em 1em;
+  font: 14px/1.4 var(--jp-ui-font-family, sans-serif); border-bottom: 1px solid #ddd; }
+nav.kf-nav.kf-bottom { border-top: 1px solid #ddd; border-bottom: none; margin-top: 2em; }
+div.kf-demo-static figure { margin: 0.5em 0 1em; }
+div.kf-demo-static img { max-width: 100%; height: auto; display: block; margin: 0.4em 0; }
+div.kf-demo-static img[hidden] { display: none; }
+div.kf-demo-static .kf-description { color: #212121; font-size: 14px; line-height: 1.45; margin: 0.3em 0; }
+div.kf-demo-static .kf-caption { color: #333333; font-size: 13px; line-height: 1.4; }
+div.kf-demo-static .kf-note { color: #595959; font-size: 12px; font-style: italic; margin: 0.3em 0 0; }
+div.kf-demo-static .kf-run { display: flex; align-items: center; gap: 0.8em; margin: 0.3em 0 0.5em; }
+div.kf-demo-static .kf-run .kf-note { margin: 0; }
+button.kf-play { font: 600 14px/1.2 var(--jp-ui-font-family, sans-serif); padding: 0.4em 0.9em;
+  flex: none; white-space: nowrap; cursor: pointer;
+  color: {accent}; background: #ffffff; border: 2px solid {accent}; border-radius: 4px; }
+button.kf-play:hover { background: #e6f2f0; }
+button.kf-play[aria-pressed="true"] { color: #ffffff; background: {accent}; }
+button.kf-play:focus-visible { outline: 3px solid #1a1a1a; outline-offset: 2px; }
+button.kf-play .kf-icon::before { content: "\\25B6\\FE0E"; }
+button.kf-play[aria-pressed="true"] .kf-icon::before { content: "\\25A0\\FE0E"; }
+button.kf-play .kf-icon { display: inline-block; width: 1.2em; }
+""".replace("{accent}", ESTIMATE_TEXT)  # the course's teal of the estimate, as text on white
+
+# The "Play the run" buttons: pressed, the recording replaces the still and plays from its
+# first picture; pressed again, the still comes back and nothing moves.  The recording's file
+# is fetched on the first press only.
+SITE_SCRIPT = """
+document.addEventListener("click", (event) => {
+  const button = event.target.closest("button.kf-play");
+  if (!button) return;
+  const figure = button.closest("figure");
+  const still = figure.querySelector("img.kf-demo-picture");
+  const run = figure.querySelector("img.kf-demo-animation");
+  const play = button.getAttribute("aria-pressed") !== "true";
+  if (play) run.src = run.dataset.src;
+  else run.removeAttribute("src");
+  run.hidden = !play;
+  still.hidden = play;
+  button.setAttribute("aria-pressed", String(play));
+});
 """
 
 INDEX = """<!DOCTYPE html>
@@ -114,14 +206,16 @@ INDEX = """<!DOCTYPE html>
 </style>
 </head>
 <body>
+<main>
 <h1>kfcourse</h1>
 <p class="kf-lead">An interactive course on the Kalman filter family for robotics students. This is the
 static edition: every chapter executed, each demo shown as a picture of its first frame (and, where it
-has Run/Pause, a short recording of its run). To drag the sliders, open the notebooks in JupyterLab
-(<code>make lab</code>).</p>
+has Run/Pause, a short recording of its run, played when you ask for it). To drag the sliders, open the
+notebooks in JupyterLab (<code>make lab</code>).</p>
 <ul class="kf-chapters">
 {items}
 </ul>
+</main>
 </body>
 </html>
 """
@@ -151,7 +245,7 @@ def mathjax_folder() -> Path:
 
 class SiteClient(NotebookClient):
     """Executes a notebook and, after every cell that showed a demo, asks the kernel for the demo's
-    caption and the recording of its run; the demo's output becomes a static figure."""
+    caption, its description and the recording of its run; the demo's output becomes a static figure."""
 
     def __init__(self, nb, *, media: Path, stem: str, **kwargs):
         super().__init__(nb, **kwargs)
@@ -186,34 +280,59 @@ class SiteClient(NotebookClient):
         if not found:
             raise RuntimeError(f"{self.stem}: cell {cell_index}: no answer about demo {model_id}: {probe.outputs}")
         info = found[0]
-        record = {"cell": cell_index, "picture": True, "animation": None}
+        record = {"cell": cell_index, "picture": True, "description": info["description"], "animation": None}
+        recording = None
         if info["recording"]:
             name = f"{self.stem}-demo{len(self.demos)}.webp"
             (self.media / name).write_bytes(base64.b64decode(info["recording"]))
             record["animation"] = f"media/{name}"
+            record["animation_alt"] = recording_alt(info["last_frame"])
+            recording = (record["animation"], record["animation_alt"])
         self.demos.append(record)
         width = out.get("metadata", {}).get("image/png", {}).get("width", 950)
-        figure = static_figure(info["caption"], out["data"]["image/png"], record["animation"], width)
+        figure = static_figure(info["caption"], info["description"], out["data"]["image/png"], recording, width)
         return nbformat.v4.new_output("display_data", data={"text/html": figure})
 
 
-def static_figure(caption: str, png_base64: str, recording: str | None, width: int) -> str:
-    """A demo on a page without a kernel, shown ``width`` CSS px wide: its picture with the
-    caption under it, then the recording of its run (if it has one) with a note under it."""
-    still = (
-        f"<figure class='kf-demo-still'><img class='kf-demo-picture' width='{width}' alt='the demo as it opens'"
-        f" src='data:image/png;base64,{png_base64}'><figcaption>"
-        f"<div class='kf-caption' style='color:#333;font-size:13px;line-height:1.4'>{caption}</div>"
-        "<div class='kf-note'>A picture of the demo. Open this notebook in JupyterLab to use its controls.</div>"
-        "</figcaption></figure>"
+def recording_alt(last_frame: str) -> str:
+    """The alt text of a run's recording: what it is, and what its last picture shows."""
+    return f"Recording of the demo's run, from its first step to its last. At the end: {last_frame}"
+
+
+def static_figure(
+    caption: str, description: str, png_base64: str, recording: tuple[str, str] | None, width: int
+) -> str:
+    """A demo on a page without a kernel, shown ``width`` CSS px wide.
+
+    Its picture, with the description as its alt text; for a demo with Run/Pause
+    (``recording`` is the file of its run and that file's alt text) a "Play the run" toggle
+    under it that shows the recording in the still's place; then the description, the
+    caption and a note.  Both pictures get the still's shape (``width`` and ``height``), so
+    the page does not move when one replaces the other.
+    """
+    if not description.strip():
+        raise ValueError("description must say what the demo's picture shows, got an empty text")
+    png = base64.b64decode(png_base64)
+    with Image.open(io.BytesIO(png)) as image:
+        height = round(width * image.height / image.width)
+    size = f"width='{width}' height='{height}'"
+    src = f"data:image/png;base64,{png_base64}"
+    pictures = f"<img class='kf-demo-picture' {size} alt='{html.escape(description)}' src='{src}'>"
+    if recording is not None:
+        run, alt = recording
+        pictures += (
+            f"<img class='kf-demo-animation' {size} alt='{html.escape(alt)}' data-src='{html.escape(run)}' hidden>"
+            "<div class='kf-run'><button type='button' class='kf-play' aria-pressed='false'>"
+            "<span class='kf-icon' aria-hidden='true'></span>Play the run</button>"
+            "<p class='kf-note'>A recording of the run, as Run shows it; press again to stop it.</p></div>"
+        )
+    return (
+        f"<div class='kf-demo-static' style='max-width:{width}px'><figure class='kf-demo-still'>{pictures}"
+        f"<figcaption><p class='kf-description'>{html.escape(description)}</p>"
+        f"<div class='kf-caption'>{caption}</div>"
+        "<p class='kf-note'>A picture of the demo. Open this notebook in JupyterLab to use its controls.</p>"
+        "</figcaption></figure></div>"
     )
-    run = (
-        f"<figure class='kf-demo-run'><img class='kf-demo-animation' width='{width}' alt='the demo, its run'"
-        f" src='{recording}'><figcaption class='kf-note'>Its run, as Run shows it.</figcaption></figure>"
-        if recording
-        else ""
-    )
-    return f"<div class='kf-demo-static' style='max-width:{width}px'>{still}{run}</div>"
 
 
 def without_nbval_markers(nb) -> None:
@@ -223,7 +342,8 @@ def without_nbval_markers(nb) -> None:
             cell.source = NBVAL_MARKER.sub("", cell.source, count=1)
 
 
-def nav(pages: list[dict], i: int) -> str:
+def nav(pages: list[dict], i: int, bottom: bool = False) -> str:
+    """The links to the previous chapter, the index and the next chapter; ``bottom``: the copy at the page's end."""
     prev = (
         f'<a href="{pages[i - 1]["href"]}">&larr; {html.escape(pages[i - 1]["title"])}</a>'
         if i > 0
@@ -235,7 +355,9 @@ def nav(pages: list[dict], i: int) -> str:
         if i + 1 < len(pages)
         else "<span></span>"
     )
-    return f'<nav class="kf-nav">{prev}{up}{nxt}</nav>'
+    if bottom:
+        return f'<nav class="kf-nav kf-bottom" aria-label="Chapters, at the end">{prev}{up}{nxt}</nav>'
+    return f'<nav class="kf-nav" aria-label="Chapters">{prev}{up}{nxt}</nav>'
 
 
 def link_pages(body: str) -> str:
@@ -282,7 +404,9 @@ def build(out: Path, folder: Path) -> list[dict]:
         without_nbval_markers(nb)
         nb.metadata.pop("widgets", None)
         nb.metadata["title"] = pages[i]["title"]  # the page's <title>
-        body, _ = exporter.from_notebook_node(nb, resources={"kf_nav": nav(pages, i)})
+        extra = {"kf_nav": nav(pages, i), "kf_nav_bottom": nav(pages, i, bottom=True)}
+        extra |= {"kf_css": SITE_CSS, "kf_script": SITE_SCRIPT}
+        body, _ = exporter.from_notebook_node(nb, resources=extra)
         (out / pages[i]["href"]).write_text(link_pages(body), encoding="utf-8")
         pages[i]["demos"] = client.demos
         print(f"{pages[i]['href']}: {len(client.demos)} demo(s), {time.monotonic() - t0:.1f} s", flush=True)

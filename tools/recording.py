@@ -1,12 +1,16 @@
 """A demo's run recorded as an animated WebP: what pressing Run shows, for a page without a kernel.
 
 The static edition (``tools/build_site.py``) loads this file in the kernel that ran a
-notebook and calls :func:`record_run` on each demo with Run/Pause.  The recording goes
-through the demo's public face only: it moves the demo's ``step`` slider
-(``demo.controls["frame"]``) as a student would, and reads each picture from the demo's
-renderer (``demo.renderer.image()``).  The pictures are as many pixels wide as the demo's
-own picture and its still on the page, so the recording and the still look equally sharp
-shown side by side at the same width.
+notebook and calls :func:`record_run` on each demo with Run/Pause, and :func:`description_at`
+for the sentence that says what the run's last picture shows (the recording's alt text ends
+with it).  Both go through the demo's public face only: they move the demo's ``step`` slider
+(``demo.controls["frame"]``) as a student would, and read each picture from the demo's
+renderer (``demo.renderer.image()``), each description from ``demo.description.text``.
+The pictures are as many pixels wide as the demo's own picture and its still on the page,
+so the recording, shown in the still's place, looks as sharp.
+
+The page shows a recording only when the reader asks for it, and stops it when asked again
+(WCAG 2.2.2: nothing moves by itself); once started, it loops.
 
 A recording of 40 pictures weighs a few hundred kB (a 1900-pixel-wide run: 250 to 600 kB).
 """
@@ -14,6 +18,7 @@ A recording of 40 pictures weighs a few hundred kB (a 1900-pixel-wide run: 250 t
 from __future__ import annotations
 
 import io
+import numbers
 
 PICTURES = 40  # at most, evenly spaced over the run
 PICTURE_MS = 120  # between two pictures: a run plays in about five seconds
@@ -90,3 +95,35 @@ def record_run(demo, pictures: int = PICTURES, quality: int = QUALITY) -> bytes:
         minimize_size=True,
     )
     return buf.getvalue()
+
+
+def description_at(demo, k: int) -> str:
+    """What the demo's description says on frame ``k``: its ``description.text`` once it rests there.
+
+    The demo is left on the frame it was on, at rest.
+
+    Parameters
+    ----------
+    demo : kfcourse.demos.Demo
+        A demo with Run/Pause: its controls hold the ``frame`` slider.
+    k : int
+        A frame of the run, from the slider's ``min`` to its ``max``.
+
+    Returns
+    -------
+    str
+        One sentence built from the demo's numbers on that frame.
+    """
+    if "frame" not in demo.controls:
+        raise ValueError("demo must have frames (Run/Pause) to describe one of them")
+    frame = demo.controls["frame"]
+    if isinstance(k, bool) or not isinstance(k, numbers.Integral) or not frame.min <= k <= frame.max:
+        raise ValueError(f"k must be a frame from {frame.min} to {frame.max}, got {k!r}")
+    start = frame.value
+    try:
+        frame.value = int(k)
+        demo.refresh()  # at rest: the crisp picture and the description of what it shows
+        return demo.description.text
+    finally:
+        frame.value = start
+        demo.refresh()

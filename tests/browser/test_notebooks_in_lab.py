@@ -11,7 +11,15 @@ that every widget really rendered, and, for each ``.kf-demo`` (see
   the picture, and after Pause the picture stops within one frame interval;
 - each control answers with a new picture within ``CONTROL_P95_MS`` at the 95th percentile
   (key press or click to new ``src``), the pictures sent while something moves weigh at most
-  ``LIGHT_MAX_BYTES`` (median), and after every action the crisp picture comes to rest.
+  ``LIGHT_MAX_BYTES`` (median), and after every action the crisp picture comes to rest;
+- for assistive technology: the picture's alt text is the description under it, in a polite
+  live region; every slider is named by its label and announces the value its readout shows
+  (also after it moved); every toggle and choice button exposes whether it is pressed, every
+  group of choice buttons has a name; a control reached with Tab shows a focus ring at least
+  ``FOCUS_MIN_PX`` wide at ``FOCUS_MIN_CONTRAST`` against the page or better.
+
+After the demos, axe-core checks the chapter's own content (its rendered Markdown and every
+output) against the WCAG 2.1 A and AA rules: no violation.
 
 The steps that drive JupyterLab are in ``tests/browser/lab.py``, the ones that drive a
 demo's controls in ``tests/browser/demo_driver.py``; this module says what must hold.
@@ -24,6 +32,7 @@ import time
 
 import pytest
 
+from tests.browser.axe import format_violations, run_axe
 from tests.browser.conftest import latency_stats
 from tests.browser.demo_driver import CRISP, JS_IMG_READY, DemoDriver
 from tests.browser.lab import (
@@ -48,6 +57,40 @@ Latency = dict[str, list[tuple[float, float | None]]]  # slider key -> (key to s
 LAYOUT_MAX_PX = 680  # the picture and its controls, caption aside: what a 1280x800 window leaves the notebook
 CONTROL_P95_MS = 250  # key press or click to the new picture, 95th percentile per demo
 LIGHT_MAX_BYTES = 60_000  # median weight of the pictures sent while a control moves or Run plays
+FOCUS_MIN_PX = 2  # the focus ring's width (WCAG 2.4.11/2.4.13: a visible indicator)
+FOCUS_MIN_CONTRAST = 3.0  # the focus ring against the page (WCAG 1.4.11, non-text contrast)
+
+# What a screen reader is told of a demo: the picture's alt text and the description under it,
+# each slider's name and spoken value against its label and readout, each toggle's pressed
+# state against the class that shows it, each group of choice buttons' name.
+JS_ACCESSIBLE = """(d) => ({
+    alt: d.querySelector('img.kf-figure')?.getAttribute('alt') ?? null,
+    description: d.querySelector('.kf-description [aria-live]')?.textContent ?? null,
+    live: d.querySelector('.kf-description [aria-live]')?.getAttribute('aria-live') ?? null,
+    sliders: Array.from(d.querySelectorAll('.widget-slider')).map(s => ({
+        label: s.querySelector('.widget-label')?.textContent.trim() ?? '',
+        name: s.querySelector('.noUi-handle')?.getAttribute('aria-label') ?? null,
+        spoken: s.querySelector('.noUi-handle')?.getAttribute('aria-valuetext') ?? null,
+        shown: s.querySelector('.widget-readout')?.textContent.trim() ?? null,
+    })),
+    toggles: Array.from(d.querySelectorAll('button.widget-toggle-button')).map(b => ({
+        text: b.textContent.trim(), active: b.classList.contains('mod-active'), pressed: b.getAttribute('aria-pressed'),
+    })),
+    groups: Array.from(d.querySelectorAll('.widget-toggle-buttons')).map(g => ({
+        role: g.getAttribute('role'), name: g.getAttribute('aria-label'),
+    })),
+})"""
+
+# The focused element's outline, and the colour of the page behind it.
+JS_FOCUS_RING = """() => {
+    const e = document.activeElement;
+    const style = getComputedStyle(e);
+    return {
+        what: e.outerHTML.slice(0, 80), style: style.outlineStyle,
+        width: parseFloat(style.outlineWidth), color: style.outlineColor,
+        inDemo: !!e.closest('.kf-demo'),
+    };
+}"""
 
 # The demo's picture and controls (every child but the caption): their height, the height of the
 # notebook area that shows them, how far any of them reaches past the output's right edge or
@@ -207,6 +250,60 @@ def _drive_plays(demo, driver: DemoDriver) -> set[str]:
     return tested
 
 
+def _check_accessible(demo, label: str, problems: list[str]) -> None:
+    """What assistive technology is told of the demo matches what the page shows."""
+    state = demo.evaluate(JS_ACCESSIBLE)
+    if not state["description"] or not state["description"].strip():
+        problems.append(f"{label}: no description under the picture")
+    elif state["alt"] != state["description"]:
+        problems.append(f"{label}: the picture's alt text {state['alt']!r} is not its description")
+    if state["live"] != "polite":
+        problems.append(f"{label}: the description is not a polite live region (aria-live={state['live']!r})")
+    for s in state["sliders"]:
+        if not s["name"] or s["name"] != s["label"]:
+            problems.append(f"{label}: slider {s['label']!r} is named {s['name']!r} for a screen reader")
+        if s["spoken"] != s["shown"]:
+            problems.append(f"{label}: slider {s['label']!r} shows {s['shown']!r} but announces {s['spoken']!r}")
+    for t in state["toggles"]:
+        if t["pressed"] != str(t["active"]).lower():
+            look = "on" if t["active"] else "off"
+            problems.append(f"{label}: button {t['text']!r} looks {look}, aria-pressed={t['pressed']!r}")
+    for g in state["groups"]:
+        if g["role"] != "group" or not g["name"]:
+            problems.append(f"{label}: a group of choice buttons has role {g['role']!r} and name {g['name']!r}")
+
+
+def _check_focus_ring(page, demo, label: str, problems: list[str]) -> None:
+    """A control reached with the keyboard shows a ring of at least FOCUS_MIN_PX at FOCUS_MIN_CONTRAST."""
+    first = demo.locator(".noUi-handle, button").first
+    first.focus()
+    page.keyboard.press("Tab")
+    ring = page.evaluate(JS_FOCUS_RING)
+    if not ring["inDemo"]:
+        first.focus()
+        page.keyboard.press("Shift+Tab")
+        ring = page.evaluate(JS_FOCUS_RING)
+    page.keyboard.press("Escape")
+    if ring["style"] in ("none", "hidden") or ring["width"] < FOCUS_MIN_PX:
+        problems.append(f"{label}: focus on {ring['what']!r} shows a {ring['width']} px {ring['style']} outline")
+        return
+    contrast = contrast_ratio(ring["color"], "rgb(255, 255, 255)")
+    if contrast < FOCUS_MIN_CONTRAST:
+        problems.append(f"{label}: the focus ring {ring['color']} has {contrast:.2f}:1 against the page")
+
+
+def contrast_ratio(css_a: str, css_b: str) -> float:
+    """WCAG contrast ratio of two CSS ``rgb(...)``/``rgba(...)`` colours (alpha ignored)."""
+
+    def luminance(css: str) -> float:
+        r, g, b = (float(v) / 255 for v in css[css.index("(") + 1 : css.index(")")].split(",")[:3])
+        lin = [c / 12.92 if c <= 0.04045 else ((c + 0.055) / 1.055) ** 2.4 for c in (r, g, b)]
+        return 0.2126 * lin[0] + 0.7152 * lin[1] + 0.0722 * lin[2]
+
+    hi, lo = sorted((luminance(css_a), luminance(css_b)), reverse=True)
+    return (hi + 0.05) / (lo + 0.05)
+
+
 def _record_latency(label: str, latency: Latency, report) -> None:
     samples = [s for v in latency.values() for s in v]
     report.latency[label] = {
@@ -274,11 +371,15 @@ def _check_demo(page, demo, label: str, shot, problems: list[str], report) -> No
 
     controls = demo.locator("[class*='kf-control-']")
     all_keys = {DemoDriver.key_of(controls.nth(i)) for i in range(controls.count())}
+    _check_accessible(demo, label, problems)
+    _check_focus_ring(page, demo, label, problems)
     latency: Latency = {}
     tested = _drive_sliders(demo, driver, latency)
     tested |= _drive_buttons(demo, driver)
     tested |= _drive_choices(demo, driver)
     tested |= _drive_plays(demo, driver)
+    driver.settle(quiet_ms=200)
+    _check_accessible(demo, f"{label} (after its controls moved)", problems)
 
     untested = sorted(k for k in all_keys - tested if k)
     if untested:
@@ -342,6 +443,12 @@ def test_notebook_runs_and_demos_respond(browser, lab_server, report, notebook):
         # -- drive every demo
         n_demos = _check_demos(page, panel, notebook.stem, problems, report)
         timings["demos driven"] = time.monotonic()
+
+        # -- the chapter's own content against WCAG 2.1 A/AA
+        violations = run_axe(page, [f"[id='{panel_id}'] .jp-MarkdownOutput", f"[id='{panel_id}'] .jp-OutputArea"])
+        if violations:
+            problems.append(f"axe-core: {format_violations(violations)}")
+        timings["axe"] = time.monotonic()
         steps = list(timings.items())
         phases = ", ".join(f"{name} {b - a:.1f} s" for (_, a), (name, b) in itertools.pairwise(steps))
         print(f"\n[browser] {notebook.name}: {n_demos} demo(s); {phases}")

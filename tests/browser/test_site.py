@@ -3,11 +3,21 @@
 The site is built into a temporary folder and served on 127.0.0.1.  Every chapter must
 have its page, linked from the index in order; on every page the equations are typeset
 by the bundled MathJax, every picture of the site has loaded (above all each demo's first
-frame, and the recording of its run where it has one), no cell failed, no script, style or
-font comes from outside the site (pictures may: the Binder badges), and every link inside
-the site leads to a page (and anchor) that exists.  A demo's caption sits under its
-picture; the recording of its run is as sharp as the still (as many pixels, shown as
-wide) and light enough for a page; nbval's ``# NBVAL_CHECK_OUTPUT`` markers stay off the pages.
+frame, and the recording of its run once asked for), no cell failed, no script, style or
+font comes from outside the site (pictures may: the Binder badges) and no script names an
+outside address, and every link inside the site leads to a page (and anchor) that exists.
+
+Every page, the index too, passes axe-core's WCAG 2.1 A and AA rules with no violation
+(``tests/browser/axe.py``: contrast of code and prompts, links told apart from text, alt
+texts, ...); it has ``lang="en"``, a title, and a ``<main>`` landmark with the navigation
+outside it.  No picture's alt text is a stock phrase (nbconvert's "No description has been
+provided for this image"); a demo's picture has the demo's own description as its alt text,
+the same sentence is printed under the picture, and the caption under that.  Nothing moves by
+itself: a recording is not even fetched until its "Play the run" button (a real
+``<button>`` with ``aria-pressed``) is pressed from the keyboard; then it shows in the
+still's place, as sharp as the still (as many pixels, shown as wide), and pressed again
+the still comes back and the recording stops.  Recordings are light enough for a page;
+nbval's ``# NBVAL_CHECK_OUTPUT`` markers stay off the pages.
 """
 
 from __future__ import annotations
@@ -27,6 +37,8 @@ from pathlib import Path
 import nbformat
 import pytest
 
+from tests.browser.axe import format_violations, run_axe
+
 pytestmark = pytest.mark.browser
 
 REPO_ROOT = Path(__file__).resolve().parents[2]
@@ -37,6 +49,10 @@ MAX_RECORDING_BYTES = 1_000_000  # a recording of a run: a few hundred kB
 NBVAL_MARKER = "# NBVAL_CHECK_OUTPUT"
 # A cell that shows a demo ends with the demo's constructor, e.g. ``kf.demos.tracker(seed=0)``.
 DEMO_CALL = re.compile(r"^kf\.demos\.\w+\(.*\)\s*;?\s*$")
+# Alt texts that say nothing about the picture: nbconvert's default and the site's old ones.
+STOCK_ALT = {"no description has been provided for this image", "the demo as it opens", "the demo, its run", ""}
+RECORDING_ALT = "Recording of the demo's run"
+PLAY = "Play the run"
 
 
 def notebooks_dir() -> Path:
@@ -105,11 +121,36 @@ def context(browser):
         context.close()
 
 
+JS_LANDMARKS = r"""() => ({
+    lang: document.documentElement.getAttribute('lang'),
+    title: document.title.trim(),
+    main: document.querySelectorAll('main').length,
+    navInMain: document.querySelectorAll('main nav').length,
+    navs: document.querySelectorAll('nav').length,
+})"""
+
+
+def assert_page_structure(page) -> None:
+    """``lang="en"``, a title, one ``<main>``, the navigation outside it."""
+    found = page.evaluate(JS_LANDMARKS)
+    assert found["lang"] == "en", f"the page's language: {found['lang']!r}"
+    assert found["title"], "the page has no title"
+    assert found["main"] == 1, f"{found['main']} <main> landmark(s), not one"
+    assert found["navInMain"] == 0, "the navigation is inside <main>"
+
+
+def assert_no_axe_violations(page, include: list[str], when: str) -> None:
+    violations = run_axe(page, include)
+    assert not violations, f"{when}: {format_violations(violations)}"
+
+
 def test_index_links_every_chapter_in_order(context, site_url, site):
     page = context.new_page()
     try:
         page.goto(site_url + "index.html")
         hrefs = page.eval_on_selector_all("ul.kf-chapters a", "links => links.map(a => a.getAttribute('href'))")
+        assert_page_structure(page)
+        assert_no_axe_violations(page, ["html"], "index.html")
     finally:
         page.close()
     assert hrefs == [p.stem + ".html" for p in expected_pages()]
@@ -123,7 +164,8 @@ JS_PAGE_STATE = r"""() => ({
     rawTex: Array.from(document.querySelectorAll('.jp-MarkdownOutput'))
         .some(e => /\\(frac|hat|mathbf|begin|sigma|Sigma)\b/.test(e.innerText)),
     images: Array.from(document.images).map(i => ({
-        cls: i.className, src: i.getAttribute('src').slice(0, 60), ok: i.complete && i.naturalWidth > 0,
+        cls: i.className, src: (i.getAttribute('src') || '').slice(0, 60), ok: i.complete && i.naturalWidth > 0,
+        alt: i.getAttribute('alt'), hidden: i.hidden,
         natural: i.naturalWidth, shown: Math.round(i.getBoundingClientRect().width)})),
     errors: document.querySelectorAll(
         '[data-mime-type="application/vnd.jupyter.stderr"], [data-mime-type="application/vnd.jupyter.error"]').length,
@@ -131,6 +173,7 @@ JS_PAGE_STATE = r"""() => ({
         'script[type="application/vnd.jupyter.widget-view+json"], .jupyter-widgets').length
         + (document.body.innerText.includes('Demo(children') ? 1 : 0),
     links: Array.from(document.querySelectorAll('a[href]')).map(a => a.href),
+    scripts: Array.from(document.scripts).map(s => s.src || s.textContent),
     code: Array.from(document.querySelectorAll('.jp-InputArea-editor')).map(e => e.innerText),
     nbvalShown: document.body.innerText.includes('NBVAL_'),
     demos: Array.from(document.querySelectorAll('.kf-demo-static')).map(d => {
@@ -138,20 +181,40 @@ JS_PAGE_STATE = r"""() => ({
         const follows = (a, b) => !!(a && b) && Boolean(a.compareDocumentPosition(b) & Node.DOCUMENT_POSITION_FOLLOWING)
             && box(b).top >= box(a).bottom - 1;
         const still = d.querySelector('img.kf-demo-picture'), run = d.querySelector('img.kf-demo-animation');
-        const size = i => i && {natural: i.naturalWidth, shown: Math.round(box(i).width)};
-        return {still: size(still), run: size(run),
-            captionUnderPicture: follows(still, d.querySelector('.kf-caption')),
-            noteUnderRecording: run ? follows(run, d.querySelector('.kf-demo-run figcaption')) : null};
+        const description = d.querySelector('.kf-description'), caption = d.querySelector('.kf-caption');
+        const button = d.querySelector('button.kf-play');
+        return {
+            alt: still && still.getAttribute('alt'),
+            description: description && description.textContent,
+            descriptionUnderPicture: follows(still, description),
+            captionUnderDescription: follows(description, caption),
+            run: run && {src: run.getAttribute('src'), hidden: run.hidden, alt: run.getAttribute('alt')},
+            button: button && {tag: button.tagName, type: button.type, pressed: button.getAttribute('aria-pressed')},
+        };
     }),
 })"""
+
+# One demo figure after its button was pressed: what shows, and the recording's size.
+JS_FIGURE = r"""figure => {
+    const still = figure.querySelector('img.kf-demo-picture'), run = figure.querySelector('img.kf-demo-animation');
+    const visible = e => !e.hidden && e.getBoundingClientRect().width > 0;
+    return {
+        pressed: figure.querySelector('button.kf-play').getAttribute('aria-pressed'),
+        stillShown: visible(still), runShown: visible(run), runSrc: run.getAttribute('src'),
+        runLoaded: run.complete && run.naturalWidth > 0,
+        run: {natural: run.naturalWidth, shown: Math.round(run.getBoundingClientRect().width)},
+    };
+}"""
 
 
 @pytest.mark.parametrize("chapter", expected_pages(), ids=lambda p: p.stem)
 def test_chapter_page(context, site_url, site, chapter):
     notebook = chapter
     url = site_url + notebook.stem + ".html"
+    manifest = json.loads((site / "demos.json").read_text(encoding="utf-8"))
+    (entry,) = [p for p in manifest["pages"] if p["notebook"] == notebook.name]
     page = context.new_page()
-    outside, failed = [], []
+    outside, failed, media = [], [], []
     page.on(
         "request",
         lambda r: (
@@ -159,6 +222,9 @@ def test_chapter_page(context, site_url, site, chapter):
             if not r.url.startswith((site_url, "data:", "blob:", "about:")) and r.resource_type != "image"
             else None
         ),
+    )
+    page.on(
+        "request", lambda r: media.append(r.url[len(site_url) :]) if r.url.startswith(site_url + "media/") else None
     )
     page.on("response", lambda r: failed.append(f"{r.status} {r.url}") if r.status >= 400 and r.url != url else None)
     try:
@@ -170,10 +236,14 @@ def test_chapter_page(context, site_url, site, chapter):
             timeout=MATHJAX_TIMEOUT_MS,
         )
         state = page.evaluate(JS_PAGE_STATE)
+        fetched_before_play = list(media)
+        assert_page_structure(page)
+        assert_no_axe_violations(page, ["html"], notebook.stem)
         ARTIFACTS.mkdir(parents=True, exist_ok=True)
         figures = page.locator(".kf-demo-static")
         for i in range(figures.count()):
             figures.nth(i).screenshot(path=ARTIFACTS / f"site__{notebook.stem}__demo{i}.png")
+        played = play_and_stop_every_recording(page, figures, notebook.stem)
         links = state["links"]
     finally:
         page.close()
@@ -186,34 +256,87 @@ def test_chapter_page(context, site_url, site, chapter):
     assert state["errors"] == 0, "a cell wrote to stderr or raised"
     assert state["widgetLeftovers"] == 0, "a widget that needs a kernel is on the page"
     # Pictures of the site itself; a badge from the web (Binder) cannot load on this offline machine.
-    broken = [i for i in state["images"] if not i["ok"] and not i["src"].startswith(("http:", "https:"))]
+    # A recording has no src until it is asked for.
+    shown = [i for i in state["images"] if not i["hidden"]]
+    broken = [i for i in shown if not i["ok"] and not i["src"].startswith(("http:", "https:"))]
     assert not broken, f"pictures that did not load: {broken}"
+    stock = [i for i in state["images"] if (i["alt"] or "").strip().lower() in STOCK_ALT]
+    assert not stock, f"pictures whose alt text says nothing about them: {[(i['cls'], i['alt']) for i in stock]}"
 
     pictures = [i for i in state["images"] if "kf-demo-picture" in i["cls"]]
     assert len(pictures) == demo_cells(notebook), "not every demo shows a picture of its first frame"
     for picture in pictures:
         assert picture["src"].startswith("data:image/png")
         assert picture["natural"] >= 1.5 * picture["shown"] > 0  # drawn for a HiDPI screen, shown smaller
-    manifest = json.loads((site / "demos.json").read_text(encoding="utf-8"))
-    (entry,) = [p for p in manifest["pages"] if p["notebook"] == notebook.name]
     recorded = [d["animation"] for d in entry["demos"] if d["animation"]]
     animations = [i for i in state["images"] if "kf-demo-animation" in i["cls"]]
     assert len(animations) == len(recorded) and len(entry["demos"]) == len(pictures)
     assert len(state["demos"]) == len(pictures)
-    for k, demo in enumerate(state["demos"]):
-        assert demo["captionUnderPicture"], f"demo {k}: its caption is not under its picture"
-        if demo["run"] is not None:
-            assert demo["noteUnderRecording"], f"demo {k}: the recording's note is not under it"
-            assert demo["run"] == demo["still"], f"demo {k}: the recording is not drawn and shown as the still is"
+    for k, (demo, listed) in enumerate(zip(state["demos"], entry["demos"], strict=True)):
+        assert demo["alt"] == listed["description"], f"demo {k}: its alt text is not its description"
+        assert demo["description"] == listed["description"], f"demo {k}: its description is not printed"
+        assert demo["descriptionUnderPicture"], f"demo {k}: its description is not under its picture"
+        assert demo["captionUnderDescription"], f"demo {k}: its caption is not under its description"
+        if listed["animation"] is None:
+            assert demo["run"] is None and demo["button"] is None
+            continue
+        assert demo["run"] == {"src": None, "hidden": True, "alt": listed["animation_alt"]}, f"demo {k}: {demo['run']}"
+        assert demo["run"]["alt"].startswith(RECORDING_ALT) and len(demo["run"]["alt"]) > len(RECORDING_ALT) + 20
+        assert demo["button"] == {"tag": "BUTTON", "type": "button", "pressed": "false"}, f"demo {k}: {demo['button']}"
+    assert not fetched_before_play, f"recordings fetched (and played) before anyone asked: {fetched_before_play}"
+    assert sorted(set(media)) == sorted(recorded), "pressing Play did not fetch each recording"
+    for k, (still, run) in played.items():
+        assert run == still, f"demo {k}: the recording is not drawn and shown as the still is"
 
     assert not state["nbvalShown"], "a page shows an nbval marker"
     for code in marked_cells(notebook):  # the code under the marker is still there
         assert code.strip() in [c.strip() for c in state["code"]], f"a checked cell lost its code: {code[:80]!r}"
 
     assert not outside, f"the page needs scripts, styles or fonts from outside the site: {outside}"
+    # Not even a script that would fetch one only in some case (nbconvert's loader of mermaid diagrams).
+    for script in state["scripts"]:
+        assert script.startswith(site_url) or not re.search(r"https?://", script), f"an outside script: {script[:200]}"
     site_failures = [f for f in failed if "/_static/mathjax/fonts/" not in f]  # MathJax probes fonts it may lack
     assert not site_failures, f"requests that failed: {site_failures}"
     assert_links_resolve(context, site_url, links)
+
+
+def play_and_stop_every_recording(page, figures, stem: str) -> dict[int, tuple[dict, dict]]:
+    """Press each demo's "Play the run" from the keyboard, check the recording replaces the still,
+    then press it again and check the still is back.  Returns, per demo with a recording, the
+    still's and the recording's size in pixels: drawn (natural) and shown."""
+    sizes = {}
+    for k in range(figures.count()):
+        figure = figures.nth(k)
+        button = figure.get_by_role("button", name=PLAY, exact=True)
+        if figure.locator("button.kf-play").count() == 0:
+            continue
+        assert button.count() == 1, f"demo {k}: its button is not named {PLAY!r}"
+        still = figure.locator("img.kf-demo-picture").evaluate(
+            "i => ({natural: i.naturalWidth, shown: Math.round(i.getBoundingClientRect().width)})"
+        )
+        button.focus()
+        page.keyboard.press("Enter")
+        figure.locator("img.kf-demo-animation").wait_for(state="visible")
+        page.wait_for_function(
+            "f => { const r = f.querySelector('img.kf-demo-animation'); return r.complete && r.naturalWidth > 0; }",
+            arg=figure.element_handle(),
+        )
+        playing = figure.evaluate(JS_FIGURE)
+        assert playing["pressed"] == "true", f"demo {k}: the button is not pressed while the run plays"
+        assert playing["runShown"] and not playing["stillShown"], f"demo {k}: the recording is not in the still's place"
+        assert playing["runSrc"] and playing["runSrc"].startswith("media/") and playing["runLoaded"], playing
+        if k == 0:
+            figure.screenshot(path=ARTIFACTS / f"site__{stem}__demo{k}__playing.png")
+        assert_no_axe_violations(page, [".kf-demo-static"], f"{stem}, demo {k} playing")
+        sizes[k] = (still, playing["run"])
+
+        page.keyboard.press("Space")  # the same button, still focused: stop
+        stopped = figure.evaluate(JS_FIGURE)
+        assert stopped["pressed"] == "false", f"demo {k}: pressed again, the button stays pressed"
+        assert stopped["stillShown"] and not stopped["runShown"], f"demo {k}: pressed again, the still is not back"
+        assert stopped["runSrc"] is None, f"demo {k}: the recording keeps playing out of sight"
+    return sizes
 
 
 def assert_links_resolve(context, site_url: str, links: list[str]) -> None:
