@@ -59,18 +59,34 @@ class AssociationModel:
         """Share of true readings a gate of this size keeps: P(chi^2 with 2 dof <= gamma^2)."""
         return 1.0 - float(np.exp(-0.5 * self.gate**2))
 
+    def nearest(self, k: int) -> tuple[int, float]:
+        """The landmark reading ``k`` was matched to (if rejected: its nearest) and its distance from it (σ)."""
+        d, j = self.result.distances[k], int(self.result.match[k])
+        j = j if j >= 0 else int(np.argmin(d))
+        return j, float(d[j])
+
     def describe(self) -> str:
         """What the picture shows: how many readings pass the gate, what became of the leg's reading,
         and how far the accepted ones move the estimate from the truth."""
         res, source = self.result, self.scan.source
         passed, total = int(res.accepted.sum()), res.match.size
         notes = []
-        lost = int(np.count_nonzero((source >= 0) & ~res.accepted))  # landmarks' own readings the gate turned away
-        if lost:
-            notes.append(f"{lost} landmark reading{'s' if lost != 1 else ''} rejected")
+        lost = np.flatnonzero((source >= 0) & ~res.accepted)  # landmarks' own readings the gate turned away
+        if lost.size > 2:
+            notes.append(f"{lost.size} landmark readings rejected")
+        else:  # one or two: which, and how far outside the gate
+            for k in lost:
+                j, d = self.nearest(k)
+                notes.append(f"reading {k} rejected at {d:.2f}σ from landmark {j}")
         if self.leg:
-            j = int(res.match[source < 0][0])
-            notes.append("the pedestrian's leg rejected" if j < 0 else f"the pedestrian's leg taken for landmark {j}")
+            k = int(np.flatnonzero(source < 0)[0])
+            j, d = self.nearest(k)
+            taken = (
+                f"taken for landmark {j} at {d:.2f}σ"
+                if res.match[k] >= 0
+                else f"rejected at {d:.2f}σ from landmark {j}"
+            )
+            notes.append(f"the pedestrian's leg {taken}")
         said = f" ({', '.join(notes)})" if notes else ""
         if passed == 0:
             effect = f"the estimate stays the prediction, {res.error_bar:.2f} m from the truth"

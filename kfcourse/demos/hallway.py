@@ -112,9 +112,16 @@ class HallwayModel:
         """``"wrap"`` or ``"wall"``, used from the next Predict on."""
         self.boundary = boundary
 
+    def update_was_flat(self) -> bool:
+        """True when the last Update's likelihood was the same in every cell (a sensor reliability of 0.5,
+        a coin flip): Bayes' rule then multiplies every cell by the same number and the belief is unchanged."""
+        likelihood = door_likelihood(self.doors, self.saw_door, self.used_reliability)
+        return bool(np.allclose(likelihood, likelihood[0], rtol=1e-9, atol=0.0))
+
     def describe(self) -> str:
-        """What the picture shows in two sentences: what the last step did to the belief, where it
-        peaks against the true cell, and the settings."""
+        """What the picture shows in two sentences: what the last step did to the belief (on the loop, where
+        the last cell's share went; with a coin-flip sensor, nothing), where it peaks against the true cell,
+        and the settings."""
         peak = self.belief.max()
         cells = np.flatnonzero(np.isclose(self.belief, peak, rtol=1e-9, atol=0.0))  # ties: a flat or mirrored belief
         if cells.size == 1:
@@ -126,14 +133,23 @@ class HallwayModel:
         if self.phase == "predicted":
             moves = f"{self.steps} move{'s' if self.steps != 1 else ''} since Reset"
             blurred = " and blurred" if self.motion_reliability < 1.0 else ""
-            step = f"After Predict ({moves}: shifted right{blurred})"
+            last = N_CELLS - 1
+            if self.boundary == "wrap":
+                ends = f", cell {last}'s share carried round the loop to cell 0, which now holds {self.belief[0]:.2f}"
+            else:
+                ends = f", cell {last} keeping its share at the wall, now holding {self.belief[last]:.2f}"
+            step = f"After Predict ({moves}: shifted right{blurred}{ends})"
+            still = ""
         else:
             left, right = ("a door" if seen else "no door" for seen in self.saw_door)
-            step = f"After Update (the sensor read {left} on the left, {right} on the right)"
+            flat = self.update_was_flat()
+            coin = "; a coin-flip sensor: the likelihood is flat, the belief unchanged" if flat else ""
+            step = f"After Update (the sensor read {left} on the left, {right} on the right{coin})"
+            still = " still" if flat else ""
         p_motion, p_sensor = (f"{p:{RELIABILITY_FORMAT}}" for p in (self.motion_reliability, self.sensor_reliability))
         later = ", from the next Update on" if self.likelihood_is_stale() else ""
         return (
-            f"{step} the belief peaks at {peak:.2f} on {where}; the robot is truly at cell {self.true_cell}. "
+            f"{step}, the belief{still} peaks at {peak:.2f} on {where}; the robot is truly at cell {self.true_cell}. "
             f"Motion reliability {p_motion}, sensor reliability {p_sensor}{later}, ends: {self.boundary}."
         )
 

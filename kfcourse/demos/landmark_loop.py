@@ -136,41 +136,74 @@ class LoopModel:
         return float(np.mean(self.run.inside[: self.frame + 1]))
 
     def describe(self) -> str:
-        """What the picture shows: the step, what the filter saw and did, its error; then the settings
-        that differ from an honest filter in the usual world, and whether the lap's NEES calls it honest."""
+        """What the picture shows: the run and step, what the filter saw and did, its error (and the
+        prediction's, when it used readings), its 1σ area, whether the truth is inside the drawn 2σ ellipse;
+        then the settings that differ from an honest filter in the usual world, and whether the lap's NEES
+        calls it honest."""
         run, k = self.run, self.frame
         used, rejected = int(np.count_nonzero(run.used[k])), int(np.count_nonzero(run.rejected[k]))
         name = "your filter" if self.filter == YOURS and self.failure is None else f"the {self.run.filter.upper()}"
         notes = ["your filter failed: the course's EKF is shown"] if self.failure else []
         if self.kidnap is not None:
-            notes.append(f"{'the robot was kidnapped' if k >= self.kidnap else 'a kidnap comes'} at step {self.kidnap}")
+            notes.append(f"{'robot kidnapped' if k >= self.kidnap else 'a kidnap comes'} at step {self.kidnap}")
         if self.is_blind():
             did = f"{name} sees nothing (the sensor is blind)"
         else:
             did = f"{name} uses {used or 'no'} reading{'s' if used != 1 else ''}"
             did += f", rejects {rejected}" if rejected else ""
             did += " (sight back: the nearest landmark only)" if self.blind and k == self.blind[1] else ""
-        error = f"{run.error[k]:.3f}" if run.error[k] < 1e3 else "over 1000"  # a student's step may fly off
-        inside = "inside" if run.inside[k] else "outside"
+        off = f"is {metres(run.error[k], '.3f')} m off"
+        if used:  # the readings moved the estimate: from where
+            off += f" ({metres(self.prediction_error(), '.3f')} m before the reading{'s' if used != 1 else ''})"
+        before, after = self.areas()
+        area = f"its 1σ area {after:.3g} m²" + (f" ({shrink(before, after)})" if used and before > 0 else "")
+        inside = "inside" if run.nees[k] <= 4.0 else "outside"  # the drawn 2σ ellipse: a Mahalanobis distance of 2
         said = f" ({'; '.join(notes)})" if notes else ""
-        now = f"Step {k}{said}: {did} and is {error} m off, the truth {inside} its 3σ ellipse."
-        changed = [
-            f"{label} ×{shown(value, SLIDER_FORMAT)}"
-            for label, value in (
-                ("the world's process noise", self.motion_noise),
-                ("measurement noise", self.sensor_noise),
-                ("the filter's R", self.trust_motion),
-                ("the filter's Q", self.trust_sensor),
-            )
-            if shown(value, SLIDER_FORMAT) != shown(1.0, SLIDER_FORMAT)
-        ]
+        now = f"Run {self.seed}, step {k}{said}: {did} and {off}; {area}, the truth {inside} its 2σ ellipse."
         nees, verdict = run.honesty()
         if not np.isfinite(nees):
             nees_text = "unbounded"
         else:  # two digits, written out: 2.2, 170, 160,000
             nees_text = f"{nees:.2g}" if nees < 100 else f"{float(f'{nees:.2g}'):,.0f}"
-        lap = f"over this lap the filter is {verdict} (mean NEES {nees_text}; an honest filter's is 2)."
-        return f"{now} With {' and '.join(changed)}, {lap}" if changed else f"{now} {lap[0].upper()}{lap[1:]}"
+        lap = f"over this lap the filter is {verdict} (mean NEES {nees_text})."
+        changed = self.changed()
+        return f"{now} With {changed}, {lap}" if changed else f"{now} {lap[0].upper()}{lap[1:]}"
+
+    def prediction_error(self) -> float:
+        """Distance between the predicted and the true position at the step shown, before its readings (m)."""
+        k = self.frame
+        return float(np.linalg.norm(self.run.truth[k, :2] - self.run.mu_bar[k, :2]))
+
+    def changed(self) -> str:
+        """The settings that differ from 1 as their sliders show them, each owner named once: "the world's
+        process noise ×3.2, its measurement noise ×10, the filter's R ×1.0e+2 and Q ×1.0e+2" ("" if none)."""
+        honest = shown(1.0, SLIDER_FORMAT)
+        world = [
+            f"{label} ×{shown(value, SLIDER_FORMAT)}"
+            for label, value in (("process noise", self.motion_noise), ("measurement noise", self.sensor_noise))
+            if shown(value, SLIDER_FORMAT) != honest
+        ]
+        trust = [
+            f"{label} ×{shown(value, SLIDER_FORMAT)}"
+            for label, value in (("R", self.trust_motion), ("Q", self.trust_sensor))
+            if shown(value, SLIDER_FORMAT) != honest
+        ]
+        if world:
+            world = [f"the world's {world[0]}"] + [f"its {rest}" for rest in world[1:]]
+        if trust:
+            trust[0] = f"the filter's {trust[0]}"
+        parts = world + trust
+        return ", ".join(parts[:-1]) + f" and {parts[-1]}" if len(parts) > 1 else "".join(parts)
+
+
+def metres(value: float, fmt: str) -> str:
+    """A distance as the description writes it: ``fmt`` digits, or "over 1000" (a student's step may fly off)."""
+    return shown(value, fmt) if value < 1e3 else "over 1000"
+
+
+def shrink(before: float, after: float) -> str:
+    """How the readings scaled the 1σ area, in two digits however small: "×0.065", "×0.0022"."""
+    return f"×{after / before:#.2g}"
 
 
 def _readout(model: LoopModel) -> str:
@@ -187,7 +220,7 @@ def _readout(model: LoopModel) -> str:
                 f", <span style='color:{palette.MEASUREMENT_TEXT}'><b>rejects {rejected}</b></span> (outside the gate)"
             )
     before, after = model.areas()
-    shrink = f" (×{after / before:#.2g})" if before > 0 else ""  # two digits however small: ×0.10, ×0.0022
+    shrink_text = f" ({shrink(before, after)})" if before > 0 else ""
     inside = "inside" if run.inside[k] else "<b>outside</b>"
     kidnapped = f"<br><b>kidnapped</b> at step {model.kidnap}" if model.kidnap is not None else ""
     nees, verdict = run.honesty()
@@ -200,7 +233,7 @@ def _readout(model: LoopModel) -> str:
         f"{sight}{kidnapped}<br>"
         f"<span style='color:{palette.ESTIMATE_TEXT}'>position error {error} m</span><br>"
         f"1σ area: <span style='color:{palette.PREDICTION_TEXT}'>{before:.3g}</span> before the readings → "
-        f"<span style='color:{palette.ESTIMATE_TEXT}'>{after:.3g} m²</span>{shrink}<br>"
+        f"<span style='color:{palette.ESTIMATE_TEXT}'>{after:.3g} m²</span>{shrink_text}<br>"
         f"truth {inside} the 3σ ellipse ({model.share_inside():.0%} of steps so far)<br>"
         f"this lap, the filter is <b>{verdict}</b>: mean NEES {nees_text} "
         f"(honest: {HONEST_NEES[0]:g} to {HONEST_NEES[1]:g}, 2 on average)</div>"

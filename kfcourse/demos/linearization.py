@@ -17,6 +17,8 @@ OUTPUT_LIMITS = {"x²": (-1.0, 9.0), "sin x": (-1.25, 1.25), "range √(x² + 1)
 DISPLAY_WIDTH = 848  # CSS px: a laptop's notebook width, where the picture and its controls fit the screen
 SLIDER_FORMAT = ".2f"  # the readout of the m and s sliders; the description writes them the same way
 CLOSE = 0.1  # the EKF "matches": its mean within 0.1 true standard deviations, its variance within 10 %
+NEAR = 0.01  # or its mean and standard deviation within 0.01 of the true ones (chapter 7: "agrees to 0.01")
+FLAT = 0.01  # a variance under 1 % of the true one: the tangent sees (almost) no spread
 
 
 class LinearizationModel(GaussianThroughCurve):
@@ -36,10 +38,17 @@ class LinearizationModel(GaussianThroughCurve):
         )
         off = abs(mean_e - mean_y) / np.sqrt(var_y)  # the EKF's mean error in true standard deviations
         ratio = var_e / var_y
-        if ratio < 0.01:
-            verdict = "The tangent is nearly flat at m: the EKF sees almost no spread where the true output has plenty."
+        if slope == 0.0:
+            verdict = f"The tangent is flat at m: the EKF says variance 0; the true output's is {shown(var_y, '.3g')}."
+        elif ratio < FLAT:
+            verdict = "The tangent is nearly flat at m: the EKF's variance is under 1 % of the true output's."
         elif off < CLOSE and abs(ratio - 1) < CLOSE:
             verdict = "Over the input's width f is nearly straight, and the EKF's Gaussian matches the true output."
+        elif abs(mean_e - mean_y) <= NEAR and abs(np.sqrt(var_e) - np.sqrt(var_y)) <= NEAR:  # narrow, near a flat slope
+            verdict = (
+                "Over the input's width f is nearly straight: the EKF's mean and standard deviation are within "
+                "0.01 of the true ones."
+            )
         else:
             verdict = (
                 f"The curve bends within the input's width: the EKF's mean is {off:.2f} true standard deviations off, "

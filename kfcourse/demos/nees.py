@@ -82,15 +82,16 @@ class NeesPanel:
         return "honest: the ellipse matches the real errors"
 
     def describe(self) -> str:
-        """What the picture shows in two sentences: the mistuning as the controls show it, where the average
-        NEES lies against its band and its expected value; the verdict."""
-        _, inside, _ = self.fractions()
+        """What the picture shows in two sentences: the mistuning as the controls show it, the mean of the
+        average NEES against its expected value, the shares of the steps below, inside and above the band
+        (the readout's numbers); the verdict."""
+        below, inside, above = (f"{100 * share:.0f} %" for share in self.fractions())
         factor = shown(self.factor, FACTOR_FORMAT)
         return (
             f"With the filter assuming {factor} × the true {self.which} ({NOISE_NAMES[self.which]}), "
-            f"the average NEES of {N_TRACKS} tracks (run {self.batch.seed}) is inside the 95 % band at "
-            f"{100 * inside:.0f} % of the steps and {self.avg_nees.mean():.2f} on average, against {DOF} expected. "
-            f"The filter is {self.verdict()}."
+            f"the average NEES of {N_TRACKS} tracks (run {self.batch.seed}) has a mean of {self.avg_nees.mean():.2f} "
+            f"({DOF} expected) and is below, inside and above the 95 % band at {below}, {inside} and {above} of "
+            f"the steps. The filter is {self.verdict()}."
         )
 
 

@@ -85,24 +85,37 @@ class CloudModel:
         self.seed += 1
         self._rerun()
 
+    def spread(self) -> tuple[float, float]:
+        """How far the dots of the step shown spread, in x and in y (m): the width of the middle 95 % of
+        the particles each way, their weights aside (a cloud that covers the map spans nearly all of it)."""
+        low, high = np.percentile(self.run.particles[self.frame, :, :2], [2.5, 97.5], axis=0)
+        width, height = high - low
+        return float(width), float(height)
+
     def describe(self) -> str:
-        """What the picture shows: the cloud's error and whether the truth is inside its ellipse, the
-        effective sample size and whether the step resampled; then the settings that shape this lap."""
+        """What the picture shows: how far the cloud spreads, its error and whether the truth is inside its
+        drawn ellipse, the effective sample size and whether the step resampled; then the settings of this lap."""
         run, k = self.run, self.frame
-        inside = "inside" if run.inside[k] else "outside"
+        inside = "inside" if run.nees[k] <= 4.0 else "outside"  # the drawn 2σ ellipse: a Mahalanobis distance of 2
         ess = run.ess[k]
         if run.resampled[k]:
             after = "under N/2, so the cloud is resampled"
-            after += f" and {run.injected[k]} particles replaced by random poses" if run.injected[k] else ""
+            after += f" and {run.injected[k]} random particles injected" if run.injected[k] else ""
         else:
             after = "at or over N/2, so the weights are kept"
+        width, height = self.spread()
+        box = ""
+        if self.global_start and run.bounds is not None:  # the cloud started anywhere: how much of the map it holds
+            (x_min, x_max), (y_min, y_max) = run.bounds
+            box = f" of the {x_max - x_min:g} m by {y_max - y_min:g} m map"
         now = (
-            f"Step {k}: the {run.n_particles} particles' mean is {run.error[k]:.2f} m from the truth, which is "
-            f"{inside} their 3σ ellipse; the effective sample size {ess:.0f} is {after}."
+            f"Step {k}: the {run.n_particles} particles spread over {width:.2f} m by {height:.2f} m{box} (the middle "
+            f"95 %), their mean {run.error[k]:.2f} m from the truth, which is {inside} their 2σ ellipse; "
+            f"the effective sample size {ess:.0f} is {after}."
         )
         settings = [f"{run.resample} resampling", "a global start" if self.global_start else "a known start"]
         if self.injection:
-            settings.append(f"{INJECTION:.0%} injected after each resampling")
+            settings.append(f"{100 * INJECTION:.0f} % injected")
         if self.kidnap is not None:
             settings.append(f"{'a kidnap at' if k >= self.kidnap else 'a kidnap to come at'} step {self.kidnap}")
         return f"{now} Run {self.seed}, with {', '.join(settings[:-1])} and {settings[-1]}."

@@ -124,20 +124,38 @@ class ParticleHallwayModel:
 
     def describe(self) -> str:
         """What the picture shows: the last press, how far the particles' histogram is from the bars
-        (TV), the effective sample size N_eff, and the bars' most likely cell against the robot's."""
+        (TV), the effective sample size N_eff, and where the bars and the particles peak against the robot's cell."""
         moves = f"{self.steps} move{'s' if self.steps != 1 else ''}"
         if self.phase == "predicted":
-            last = f"After Predict ({moves} so far)"
+            last = f"After Predict ({moves})"
         else:
             left, right = self.saw_door  # the reading: a door on the left wall, on the right
             seen = "doors on both sides" if left and right else "a door on the left" if left else "a door on the right"
-            last = f"After an Update that saw {seen if left or right else 'no door'} ({moves} so far)"
-        peak = int(np.argmax(self.belief))
+            last = f"After an Update that saw {seen if left or right else 'no door'} ({moves})"
         return (
-            f"{last}, the {self.n_particles} particles' histogram lies TV = {self.tv:.2f} from the histogram "
-            f"filter's bars (total variation: 0 the same, 1 no overlap), effective sample size {self.n_eff:.0f}. "
-            f"The tallest bar is cell {peak} ({self.belief[peak]:.0%}); the robot is in cell {self.true_cell}."
+            f"{last}, the {self.n_particles} particles' histogram lies TV = {self.tv:.2f} from the bars "
+            f"(total variation: 0 the same, 1 no overlap), effective sample size {self.n_eff:.0f}. "
+            f"The bars peak at {peak(self.belief)}, the particles at {peak(self.cloud)}; "
+            f"the robot is in cell {self.true_cell}."
         )
+
+
+def peak(histogram: np.ndarray) -> str:
+    """Where a histogram over the cells peaks, in words: "42 % on cells 0 and 10".
+
+    Every cell within rounding of the tallest is named (a mirrored or flat belief has ties; the
+    first of them is no likelier than the others), up to four, else their number.  A share that
+    rounds to 100 % without being 1 is "over 99 %"."""
+    top = float(histogram.max())
+    cells = [str(c) for c in np.flatnonzero(np.isclose(histogram, top, rtol=1e-9, atol=0.0))]
+    if len(cells) == 1:
+        where = f"cell {cells[0]}"
+    elif len(cells) <= 4:
+        where = f"cells {', '.join(cells[:-1])} and {cells[-1]}"
+    else:
+        where = f"{len(cells)} cells"
+    share = "over 99 %" if round(100 * top) == 100 and top < 1.0 else f"{100 * top:.0f} %"
+    return f"{share} on {where}"
 
 
 def particle_hallway(seed: int = 0) -> Demo:

@@ -62,14 +62,19 @@ class RawVsFiltered:
         return tuple(float(np.sqrt(np.mean(e[:k] ** 2))) for e in self.errors())
 
     def describe(self) -> str:
-        """What the picture shows in one sentence: the run and the step, the sensor noise, and how far each
-        estimate has been from the truth so far (RMS, in cm as the picture writes it)."""
+        """What the picture shows in one sentence: the run and the step, the sensor noise, how far each
+        estimate has been from the truth so far (RMS, in cm as the picture writes it), and which is the closest."""
         raw, dead, filtered = (round(100 * e) for e in self.rms_errors_all())  # cm, as the picture writes them
-        verdict = ", so the filter is the closest" if filtered < min(raw, dead) else ""
+        errors = {"the filter": filtered, "the raw pings": raw, "dead reckoning": dead}
+        closest = [name for name, cm in errors.items() if cm == min(errors.values())]
+        if len(closest) == 1:
+            verdict = f"{closest[0]} is the closest"
+        else:
+            verdict = f"{', '.join(closest[:-1])} and {closest[-1]} are equally close"
         sensor = f"{self.run.sensor_std:{SENSOR_FORMAT}}"
         return (
             f"Run {self.seed}, step {self.frame}, sensor noise σ = {sensor} m: so far the filtered estimate has been "
-            f"{filtered} cm from the truth (RMS), the raw pings {raw} cm and dead reckoning {dead} cm{verdict}."
+            f"{filtered} cm from the truth (RMS), the raw pings {raw} cm and dead reckoning {dead} cm, so {verdict}."
         )
 
 

@@ -22,6 +22,7 @@ SLIDER_FORMAT = ".2f"  # the readout of the m and s sliders; the description wri
 LAM_FORMAT = ".1f"  # the readout of the lambda slider
 SAME_MEAN = 0.001  # two means this close count as equally close to the truth (the readout's last digit)
 SAME_VARIANCE = 0.01  # two variances whose errors differ by under 1 % of the true variance: equally close
+AGREE = 0.1  # all three agree: both means within 0.1 true standard deviations, both variances within 10 %
 
 
 def closer(ukf_error: float, ekf_error: float, tie: float) -> str:
@@ -61,33 +62,52 @@ class SigmaPointsModel(GaussianThroughCurve):
 
     def describe(self) -> str:
         """What the picture shows: where the sigma points sit, and which answer, the UKF's or the EKF's,
-        is nearer the true output's mean and variance (the exact ones for x², else the sampled ones)."""
+        is nearer the true output's mean and variance (the exact ones for x², else the sampled ones), or
+        that all three agree (a narrow input)."""
         chi, w = self.sigma_points()
         left, right = sorted(chi[1:])
         (mean_u, var_u), (mean_e, var_e) = self.ukf(), self.ekf()
         truth = "exact" if self.exact() is not None else "sampled"
         mean_t, var_t = self.exact() if truth == "exact" else self.sampled()
         x = [shown(value, SLIDER_FORMAT) for value in (left, self.m, right)]
+        weight = shown(w[0], ".2f")
         points = (
             f"With f = {self.function}, m = {shown(self.m, SLIDER_FORMAT)}, s = {shown(self.s, SLIDER_FORMAT)} "
-            f"and λ = {shown(self.lam, LAM_FORMAT)}, the sigma points sit at {x[0]}, {x[1]} and {x[2]}, "
-            f"the middle one weighing {shown(w[0], '.2f')}."
+            f"and λ = {shown(self.lam, LAM_FORMAT)}, the sigma points sit at {x[0]}, {x[1]} and {x[2]} "
+            f"(the middle one weighs {'0' if float(weight) == 0 else weight})."
         )
-        by_mean = closer(abs(mean_u - mean_t), abs(mean_e - mean_t), SAME_MEAN)
-        by_var = closer(abs(var_u - var_t) / var_t, abs(var_e - var_t) / var_t, SAME_VARIANCE)
-        if by_mean == by_var:
-            verdict = "the two are as close" if by_mean == "tie" else f"the {by_mean} is closer in both"
+        sd_t = np.sqrt(var_t)
+        if all(
+            abs(mean - mean_t) < AGREE * sd_t and abs(var / var_t - 1) < AGREE
+            for mean, var in ((mean_u, var_u), (mean_e, var_e))
+        ):
+            verdict = "all three agree"
         else:
-            verdict = ", ".join(
-                f"the {who} is closer in the {what}" if who != "tie" else f"the two are as close in the {what}"
-                for who, what in ((by_mean, "mean"), (by_var, "variance"))
-            )
+            by_mean = closer(abs(mean_u - mean_t), abs(mean_e - mean_t), SAME_MEAN)
+            by_var = closer(abs(var_u - var_t) / var_t, abs(var_e - var_t) / var_t, SAME_VARIANCE)
+            if by_mean == by_var != "tie":
+                verdict = f"the {by_mean} is closer in both"
+            else:
+                verdict = "; ".join(
+                    [
+                        _nearer(by_mean, "mean", shown(mean_u, ".3f"), shown(mean_e, ".3f")),
+                        _nearer(by_var, "variance", shown(var_u, ".4g"), shown(var_e, ".4g")),
+                    ]
+                )
         answers = (
             f"Against the {truth} output's mean {shown(mean_t, '.3f')} and variance {shown(var_t, '.4g')}, the UKF "
             f"gives {shown(mean_u, '.3f')} and {shown(var_u, '.4g')}, the EKF {shown(mean_e, '.3f')} and "
             f"{shown(var_e, '.4g')}: {verdict}."
         )
         return f"{points} {answers}"
+
+
+def _nearer(who: str, what: str, ukf: str, ekf: str) -> str:
+    """One clause of the verdict: which answer is closer in ``what`` ("mean" or "variance"), given
+    the two answers as shown; equally close ones that read the same are named once."""
+    if who != "tie":
+        return f"the {who} is closer in the {what}"
+    return f"both give the {what} {ukf}" if ukf == ekf else f"neither is closer in the {what}"
 
 
 def sigma_points(seed: int = 0) -> Demo:

@@ -17,6 +17,13 @@ K_COASTING = 0.05  # position gain below which the filter coasts on its motion m
 SENSOR_FORMAT = ".1f"  # the sensor σ slider's readout
 TUNING_FORMAT = ".3g"  # the readouts of the log sliders Q and σₐ²
 DISPLAY_WIDTH = 848  # CSS px: a laptop's notebook width, where the picture and its controls fit the screen
+REGIMES = {  # each mode of Tracker.mode, explained in the readout
+    "starting guess": "starting guess: the first reading, velocity unknown",
+    "start-up": "start-up: fitting a straight line through the readings so far",
+    "jittery": "K → 1: jittery, copies every reading (R huge or Q tiny)",
+    "coasting": "K → 0: coasting on the motion model, lags the turns (Q huge or R tiny)",
+    "balanced": "balanced: follows the turns, smooths the noise",
+}
 CAPTION = (
     "<b>2-D tracker.</b> Grey, dotted: the true path, position and velocity (the line reaches where the target is 1 s "
     "later). Orange: readings. Teal: the estimate, its trail, velocity and 2σ ellipse; pale thin line: where it "
@@ -88,18 +95,28 @@ class Tracker:
         """The position gain at the frame shown: how far the estimate moves towards a reading."""
         return float(self.est.K[self.frame, 0, 0])
 
-    def regime(self) -> str:
-        """Which end of the trust slider the filter is at, in words."""
+    def mode(self) -> str:
+        """Where the filter is on the trust slider at the frame shown, in one or two words."""
         if self.frame == 0:
-            return "starting guess: the first reading, velocity unknown"
+            return "starting guess"
         if self.frame < START_STEPS:
-            return "start-up: fitting a straight line through the readings so far"
+            return "start-up"
         K = self.gain()
         if K >= K_JITTERY:
-            return "K → 1: jittery, copies every reading (R huge or Q tiny)"
+            return "jittery"
         if K <= K_COASTING:
-            return "K → 0: coasting on the motion model, lags the turns (Q huge or R tiny)"
-        return "balanced: follows the turns, smooths the noise"
+            return "coasting"
+        return "balanced"
+
+    def regime(self) -> str:
+        """The mode at the frame shown, explained."""
+        return REGIMES[self.mode()]
+
+    def truth_inside(self) -> bool:
+        """Is the true position inside the estimate's 2σ ellipse at the frame shown?"""
+        k = self.frame
+        p_true, p_est, Sig = self.run.truth[k, :2], self.est.mu[k, :2], self.est.Sig[k, :2, :2]
+        return bool(nees(p_true, p_est, Sig) <= 2.0**2)  # on the 2σ ellipse NEES = 2²
 
     def velocities(self) -> tuple[np.ndarray, np.ndarray]:
         """Estimated and true velocity [vx, vy] (m/s) at the frame shown."""
@@ -115,17 +132,19 @@ class Tracker:
 
     def describe(self) -> str:
         """What the picture shows in one short sentence (one line of the output, so that the picture and its
-        controls fit a laptop's screen): the run and the step, the world's and the filter's settings as their
-        sliders show them, and whether the true target is inside the estimate's 2σ ellipse.  The readout under
-        the picture gives the numbers: the velocities, the error, the gain and the honesty test."""
-        k = self.frame
-        p_true, p_est, Sig = self.run.truth[k, :2], self.est.mu[k, :2], self.est.Sig[k, :2, :2]
-        inside = "inside" if nees(p_true, p_est, Sig) <= 2.0**2 else "outside"  # on the 2σ ellipse NEES = 2²
+        controls fit a laptop's screen): the step and the settings as their sliders show them; the mode and
+        the gain K; how far the estimate is off and whether the truth is inside its 2σ ellipse, of which
+        radius; and the run's honesty verdict.  The numbers are the readout's (which a screen reader does not
+        announce); the readout adds the velocities, the mean errors and the mean NEES."""
+        k, est = self.frame, self.est
         sensor = shown(self.sensor_std, SENSOR_FORMAT)
         q, accel = shown(self.q_factor, TUNING_FORMAT), shown(self.accel_var, TUNING_FORMAT)
+        gain = f", K = {self.gain():.3f}" if k > 0 else ""  # no gain yet: the estimate is the first reading
+        inside = "inside" if self.truth_inside() else "outside"
         return (
-            f"Run {self.seed}, step {k} (t = {self.run.t[k]:.1f} s), sensor σ = {sensor} m, filter's Q = {q} × true, "
-            f"σₐ² = {accel}: the truth is {inside} the 2σ ellipse."
+            f"Step {k}, σ {sensor} m, Q × {q}, σₐ² {accel}: {self.mode()}{gain}; "
+            f"{est.position_error()[k]:.2f} m off, {inside} the 2σ ellipse ({est.ellipse_radius(k):.2f} m); "
+            f"{est.honesty().verdict}."
         )
 
 

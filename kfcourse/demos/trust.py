@@ -60,10 +60,17 @@ class TrustModel:
                 measurement += ", the surer one"
         share = 100 * self.K
         share = f"{share:.0f}" if 1 <= share <= 99 else f"{share:.1f}"  # never "0 %" or "100 %" of the way
-        narrower = "narrower than both" if var_f < min(self.var_pred, self.var_meas) else "not narrower than both"
+        variance = shown(var_f, VARIANCE_FORMAT)  # as the variance sliders write theirs
+        surer = min(self.var_pred, self.var_meas)
+        if var_f >= surer:
+            narrower = "not narrower than both"
+        elif variance == shown(surer, VARIANCE_FORMAT):  # narrower by less than the readouts show
+            narrower = "only just narrower than both"
+        else:
+            narrower = "narrower than both"
         return (
             f"K = {self.K:.3f}: the fused mean {shown(mu_f, '.3f')} lies {share} % of the way from the prediction "
-            f"({prediction}) to the measurement ({measurement}); its variance {var_f:.3g} is {narrower}."
+            f"({prediction}) to the measurement ({measurement}); its variance {variance} is {narrower}."
         )
 
 
