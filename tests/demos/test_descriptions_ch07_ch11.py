@@ -21,11 +21,10 @@ from kfcourse.demos.linearization import N_SAMPLES as LINEARIZATION_SAMPLES
 from kfcourse.demos.linearization import LinearizationModel
 from kfcourse.plots import palette
 from kfcourse.plots.style import FigureRenderer
+from tests.demos.describing import at_the_ends, move, press, said
 from tests.demos.layout import readout, widgets_in
 from tests.demos.test_landmark_loop import reference_step
 
-SENTENCE_END = re.compile(r"[.!?](?=\s|$)")
-NOT_A_NUMBER = re.compile(r"\b(nan|inf|infinity)\b", re.IGNORECASE)
 SEEDS = (0, 1, 2)
 TEXT_SHADES = {palette.PREDICTION_TEXT, palette.MEASUREMENT_TEXT, palette.ESTIMATE_TEXT, palette.TRUTH_TEXT}
 
@@ -37,47 +36,9 @@ def words_not_pictures(monkeypatch):
     monkeypatch.setattr(FigureRenderer, "jpeg", lambda self: b"\xff\xd8\xff")
 
 
-def said(demo) -> str:
-    """The demo's description, checked: one or two sentences, every number finite."""
-    text = demo.description.text
-    assert text and not NOT_A_NUMBER.search(text), text
-    assert 1 <= len(SENTENCE_END.findall(text)) <= 2, text
-    return text
-
-
-def move(demo, name: str, value) -> str:
-    """Set a control, and return the new description, which must differ from the one before."""
-    before = said(demo)
-    demo.controls[name].value = value
-    after = said(demo)
-    assert after != before, (name, value, after)
-    return after
-
-
-def press(demo, name: str) -> str:
-    """Click a button, and return the new description, which must differ from the one before."""
-    before = said(demo)
-    demo.controls[name].click()
-    after = said(demo)
-    assert after != before, (name, after)
-    return after
-
-
 def words(text: str) -> int:
     """How many words a description has (a listener hears each)."""
     return len(text.split())
-
-
-def at_the_ends(demo, names) -> None:
-    """Each slider of ``names`` at its minimum and its maximum (a log slider: 10 to the power of its ends)."""
-    for name in names:
-        control = demo.controls[name]
-        ends = (control.min, control.max)
-        if isinstance(control, widgets.FloatLogSlider):
-            ends = tuple(control.base**end for end in ends)
-        for end in ends:
-            control.value = end
-            said(demo)
 
 
 # --------------------------------------------------------------------------- chapter 7: linearization
