@@ -19,10 +19,11 @@ from ..sim.hallway import (
     hallway_doors,
     motion_kernel,
     move,
+    peak_cells,
     read_door,
     start_cell,
 )
-from ._base import Demo, button, slider
+from ._base import Demo, button, shown, slider
 
 DOORS = hallway_doors()  # (2, N_CELLS): doors on the left (row 0) and right (row 1) wall
 DOORS.flags.writeable = False
@@ -123,7 +124,7 @@ class HallwayModel:
         the last cell's share went; with a coin-flip sensor, nothing), where it peaks against the true cell,
         and the settings."""
         peak = self.belief.max()
-        cells = np.flatnonzero(np.isclose(self.belief, peak, rtol=1e-9, atol=0.0))  # ties: a flat or mirrored belief
+        cells = peak_cells(self.belief)
         if cells.size == 1:
             where = f"cell {cells[0]}"
         elif cells.size <= 4:
@@ -146,7 +147,7 @@ class HallwayModel:
             coin = "; a coin-flip sensor: the likelihood is flat, the belief unchanged" if flat else ""
             step = f"After Update (the sensor read {left} on the left, {right} on the right{coin})"
             still = " still" if flat else ""
-        p_motion, p_sensor = (f"{p:{RELIABILITY_FORMAT}}" for p in (self.motion_reliability, self.sensor_reliability))
+        p_motion, p_sensor = (shown(p, RELIABILITY_FORMAT) for p in (self.motion_reliability, self.sensor_reliability))
         later = ", from the next Update on" if self.likelihood_is_stale() else ""
         return (
             f"{step}, the belief{still} peaks at {peak:.2f} on {where}; the robot is truly at cell {self.true_cell}. "

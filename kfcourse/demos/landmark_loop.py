@@ -9,6 +9,7 @@ import numpy as np
 
 from ..plots import palette
 from ..plots.loop import loop_view, update_loop_view
+from ..plots.loop_strips import NSIG
 from ..plots.style import FigureRenderer
 from ..sim.localization import HONEST_NEES
 from ..sim.localization import landmark_loop as run_loop
@@ -157,7 +158,7 @@ class LoopModel:
             off += f" ({metres(self.prediction_error(), '.3f')} m before the reading{'s' if used != 1 else ''})"
         before, after = self.areas()
         area = f"its 1σ area {after:.3g} m²" + (f" ({shrink(before, after)})" if used and before > 0 else "")
-        inside = "inside" if run.nees[k] <= 4.0 else "outside"  # the drawn 2σ ellipse: a Mahalanobis distance of 2
+        inside = "inside" if run.nees[k] <= NSIG**2 else "outside"  # the drawn ellipse: a Mahalanobis distance of NSIG
         said = f" ({'; '.join(notes)})" if notes else ""
         now = f"Run {self.seed}, step {k}{said}: {did} and {off}; {area}, the truth {inside} its 2σ ellipse."
         nees, verdict = run.honesty()

@@ -6,6 +6,7 @@ import ipywidgets as widgets
 import numpy as np
 
 from ..plots import palette
+from ..plots.loop_strips import NSIG
 from ..plots.particles import cloud_view, update_cloud_view
 from ..plots.style import FigureRenderer
 from ..sim.particle import RESAMPLERS, particle_loop
@@ -96,7 +97,7 @@ class CloudModel:
         """What the picture shows: how far the cloud spreads, its error and whether the truth is inside its
         drawn ellipse, the effective sample size and whether the step resampled; then the settings of this lap."""
         run, k = self.run, self.frame
-        inside = "inside" if run.nees[k] <= 4.0 else "outside"  # the drawn 2σ ellipse: a Mahalanobis distance of 2
+        inside = "inside" if run.nees[k] <= NSIG**2 else "outside"  # the drawn ellipse: a Mahalanobis distance of NSIG
         ess = run.ess[k]
         if run.resampled[k]:
             after = "under N/2, so the cloud is resampled"

@@ -20,6 +20,7 @@ from ..sim.hallway import (
     hallway_doors,
     motion_kernel,
     move,
+    peak_cells,
     read_door,
     start_cell,
 )
@@ -143,11 +144,10 @@ class ParticleHallwayModel:
 def peak(histogram: np.ndarray) -> str:
     """Where a histogram over the cells peaks, in words: "42 % on cells 0 and 10".
 
-    Every cell within rounding of the tallest is named (a mirrored or flat belief has ties; the
-    first of them is no likelier than the others), up to four, else their number.  A share that
+    Every cell of :func:`~kfcourse.sim.hallway.peak_cells` is named, up to four, else their number.  A share that
     rounds to 100 % without being 1 is "over 99 %"."""
     top = float(histogram.max())
-    cells = [str(c) for c in np.flatnonzero(np.isclose(histogram, top, rtol=1e-9, atol=0.0))]
+    cells = [str(c) for c in peak_cells(histogram)]
     if len(cells) == 1:
         where = f"cell {cells[0]}"
     elif len(cells) <= 4:

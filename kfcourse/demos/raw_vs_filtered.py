@@ -10,7 +10,7 @@ import numpy as np
 from ..plots.raw_vs_filtered import raw_vs_filtered_view, update_raw_vs_filtered
 from ..plots.style import FigureRenderer
 from ..sim.line import simulate_line
-from ._base import Demo, button, slider
+from ._base import Demo, button, shown, slider
 
 N_STEPS = 150
 STEP_STD = 0.05  # m of disturbance per step
@@ -71,7 +71,7 @@ class RawVsFiltered:
             verdict = f"{closest[0]} is the closest"
         else:
             verdict = f"{', '.join(closest[:-1])} and {closest[-1]} are equally close"
-        sensor = f"{self.run.sensor_std:{SENSOR_FORMAT}}"
+        sensor = shown(self.run.sensor_std, SENSOR_FORMAT)
         return (
             f"Run {self.seed}, step {self.frame}, sensor noise σ = {sensor} m: so far the filtered estimate has been "
             f"{filtered} cm from the truth (RMS), the raw pings {raw} cm and dead reckoning {dead} cm, so {verdict}."

@@ -2,7 +2,7 @@ r"""Chapter 3's picture: one half-step of the 1-D Kalman filter on Gaussian curv
 
 Four curves, of which each half-step shows some: the belief before the step (thin
 teal), the prediction :math:`\overline{bel}` (purple, dashed), the measurement
-:math:`\mathcal N(z, Q)` around the reading (orange, dash-dot, the reading a dash-dot line) and
+:math:`\mathcal N(z, Q)` around the reading (orange, dash-dot, as is the line at the reading) and
 the belief after the update (teal, solid).  The legend fades the entries of the curves not shown.
 The x axis follows the belief, a whole number of metres at its centre; the density
 axis's top is a power of two (:func:`~kfcourse.plots.style.nice_limit`), so that both

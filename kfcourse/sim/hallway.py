@@ -109,6 +109,24 @@ def start_cell(rng: np.random.Generator, n_cells: int = N_CELLS) -> int:
     return int(rng.integers(n_cells))
 
 
+def peak_cells(histogram) -> np.ndarray:
+    """The cells where a histogram over the hallway peaks: every cell within rounding (a relative
+    1e-9) of the tallest.  A mirrored or flat belief peaks on several cells, and the first of them
+    is no likelier than the others.
+
+    Parameters
+    ----------
+    histogram : array_like, shape (n_cells,)
+        A belief or a particle histogram: probabilities summing to 1.
+
+    Returns
+    -------
+    np.ndarray of int, in increasing order
+    """
+    p = v.probabilities(histogram, "histogram")
+    return np.flatnonzero(np.isclose(p, p.max(), rtol=1e-9, atol=0.0))
+
+
 @dataclass(frozen=True)
 class HallwayRun(Record):
     """One run of the hallway filter: a first look, then ``n_cycles`` of predict and update.

@@ -49,6 +49,7 @@ from tests.browser.lab import (
     shutdown_kernels,
     wait_for_widgets,
 )
+from tests.plots.colour_vision import contrast
 
 pytestmark = pytest.mark.browser
 
@@ -287,21 +288,15 @@ def _check_focus_ring(page, demo, label: str, problems: list[str]) -> None:
     if ring["style"] in ("none", "hidden") or ring["width"] < FOCUS_MIN_PX:
         problems.append(f"{label}: focus on {ring['what']!r} shows a {ring['width']} px {ring['style']} outline")
         return
-    contrast = contrast_ratio(ring["color"], "rgb(255, 255, 255)")
-    if contrast < FOCUS_MIN_CONTRAST:
-        problems.append(f"{label}: the focus ring {ring['color']} has {contrast:.2f}:1 against the page")
+    ratio = contrast(css_hex(ring["color"]), "#ffffff")
+    if ratio < FOCUS_MIN_CONTRAST:
+        problems.append(f"{label}: the focus ring {ring['color']} has {ratio:.2f}:1 against the page")
 
 
-def contrast_ratio(css_a: str, css_b: str) -> float:
-    """WCAG contrast ratio of two CSS ``rgb(...)``/``rgba(...)`` colours (alpha ignored)."""
-
-    def luminance(css: str) -> float:
-        r, g, b = (float(v) / 255 for v in css[css.index("(") + 1 : css.index(")")].split(",")[:3])
-        lin = [c / 12.92 if c <= 0.04045 else ((c + 0.055) / 1.055) ** 2.4 for c in (r, g, b)]
-        return 0.2126 * lin[0] + 0.7152 * lin[1] + 0.0722 * lin[2]
-
-    hi, lo = sorted((luminance(css_a), luminance(css_b)), reverse=True)
-    return (hi + 0.05) / (lo + 0.05)
+def css_hex(css: str) -> str:
+    """A computed CSS colour, ``rgb(r, g, b)`` or ``rgba(r, g, b, a)`` (alpha ignored), as ``#rrggbb``."""
+    r, g, b = (round(float(v)) for v in css[css.index("(") + 1 : css.index(")")].split(",")[:3])
+    return f"#{r:02x}{g:02x}{b:02x}"
 
 
 def _record_latency(label: str, latency: Latency, report) -> None:

@@ -118,3 +118,11 @@ def test_predicting_against_a_wall_piles_the_belief_into_the_end_cell():
         ring = kf.bayes_predict(ring, kernel, "wrap")
     assert wall.argmax() == hw.N_CELLS - 1 and wall[-1] > 0.5
     np.testing.assert_allclose(ring, flat)  # on a loop nothing piles up
+
+
+def test_peak_cells_names_every_cell_tied_for_the_top():
+    assert hw.peak_cells([0.1, 0.4, 0.1, 0.4]).tolist() == [1, 3]  # a mirrored belief: both peaks
+    assert hw.peak_cells([0.2, 0.5, 0.3]).tolist() == [1]
+    assert hw.peak_cells(np.full(4, 0.25)).tolist() == [0, 1, 2, 3]  # flat: every cell
+    with pytest.raises(ValueError, match="histogram"):
+        hw.peak_cells([0.5, 0.6])
