@@ -17,7 +17,7 @@ from PIL import Image
 
 import kfcourse as kf
 from kfcourse.plots.style import PIXEL_DENSITY
-from tools.recording import HOLD_MS, description_at, frames_to_record, record_run
+from tools.recording import HOLD_MS, description_at, frame_pictures, frames_to_record, record, record_run
 
 DEMOS = kf.demos.__all__
 # The demos with a run to play, named here so that collecting the tests builds no demo;
@@ -89,6 +89,35 @@ def test_frames_to_record_span_the_run_evenly(first, last, pictures):
         assert ks == list(range(first, last + 1))  # a short run: every frame
 
 
+def test_each_picture_of_a_recording_is_what_the_demo_shows_on_that_frame():
+    """The pictures are read off the canvas the demo drew into, not rendered again: they are
+    exactly what the renderer gives on that frame, the frame the slider is on included."""
+    demo = kf.demos.tracker(seed=0)
+    frame = demo.controls["frame"]
+    ks = [frame.value, frame.value + 3, frame.max]
+    shown = frame_pictures(demo, ks)
+    assert frame.value == frame.max
+    for k, got in zip(ks, shown, strict=True):
+        frame.value = k
+        assert got.mode == "RGB" and np.array_equal(np.asarray(got), np.asarray(demo.renderer.image())), k
+
+
+@pytest.mark.parametrize("name", ["raw_vs_filtered", "tracker"])
+def test_record_gives_the_run_and_the_description_of_its_last_frame(name):
+    demo = getattr(kf.demos, name)(seed=0)
+    frame = demo.controls["frame"]
+    start, before, shown = frame.value, demo.description.text, bytes(demo.image.value)
+
+    data, last = record(demo, pictures=6)
+
+    assert frame.value == start and demo.description.text == before  # left as it was, at rest
+    assert bytes(demo.image.value) == shown
+    assert last == description_at(demo, frame.max)
+    run = picture(data)
+    assert run.format == "WEBP" and 2 <= run.n_frames <= 6 and run.size[0] == demo.renderer.pixel_width
+    assert data == record_run(demo, pictures=6)  # the same file as the recording alone
+
+
 def test_recording_needs_a_run_and_sensible_settings():
     with pytest.raises(ValueError, match="demo"):
         record_run(kf.demos.covariance_ellipse(seed=0))
@@ -97,6 +126,10 @@ def test_recording_needs_a_run_and_sensible_settings():
         record_run(demo, pictures=1)
     with pytest.raises(ValueError, match="quality"):
         record_run(demo, quality=101)
+    with pytest.raises(ValueError, match="demo"):
+        record(kf.demos.covariance_ellipse(seed=0))
+    with pytest.raises(ValueError, match="quality"):
+        record(demo, quality=-1)
     with pytest.raises(ValueError, match="last"):
         frames_to_record(5, 4, 10)
 

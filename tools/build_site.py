@@ -5,10 +5,12 @@
 
 Every ``notebooks/NN_*.ipynb`` becomes ``NN_*.html``; the notation table (``notation.ipynb``)
 and the solutions (``solutions.ipynb``), where there are, come last.  The notebooks are stored
-clean, so each one is executed here, with nbclient and the course's own kernel.  nbconvert's
-JupyterLab template turns it into HTML; equations are typeset in the reader's browser by a copy
-of MathJax 2.7 from the ``jupyter-server-mathjax`` package (requirements-dev.txt), served from
-``_static/mathjax`` beside the pages: no CDN.
+clean, so each one is executed here, with nbclient and the course's own kernel: two chapters at
+a time, each in a kernel of its own (``--jobs``), the longest first, and every kernel talks to
+the build over CurveZMQ-encrypted transport, as under ``make lab`` (``kernel_config``).
+nbconvert's JupyterLab template turns it into HTML; equations are typeset in the reader's
+browser by a copy of MathJax 2.7 from the ``jupyter-server-mathjax`` package
+(requirements-dev.txt), served from ``_static/mathjax`` beside the pages: no CDN.
 
 A page has no kernel, so a demo's live widget cannot show there.  A demo shown as the last
 value of a cell also hands the notebook a PNG of the picture it shows at first
@@ -32,10 +34,12 @@ is left out of the pages: it speaks to the test runner, not to a reader.
 from __future__ import annotations
 
 import argparse
+import asyncio
 import base64
 import html
 import io
 import json
+import os
 import re
 import shutil
 import sys
@@ -45,9 +49,11 @@ from pathlib import Path
 
 import jinja2
 import nbformat
+import zmq
 from nbclient import NotebookClient
 from nbconvert import HTMLExporter
 from PIL import Image
+from traitlets.config import Config
 
 from kfcourse.plots.palette import ESTIMATE_TEXT
 
@@ -56,6 +62,7 @@ WIDGET_VIEW = "application/vnd.jupyter.widget-view+json"
 PROBE_MIME = "application/vnd.kfcourse.demo+json"
 CHAPTER = re.compile(r"\d\d_[a-z0-9_]+\.ipynb")
 CELL_TIMEOUT_S = 600
+JOBS = min(2, os.cpu_count() or 1)  # chapters executed at once, each in its own kernel
 MATHJAX_URL = "_static/mathjax/MathJax.js?config=TeX-AMS-MML_HTMLorMML-full,Safe"
 RECORDING = ROOT / "tools" / "recording.py"
 NBVAL_MARKER = re.compile(r"\A# NBVAL_[A-Z_]+[ \t]*\r?(\n|\Z)")  # a first line that speaks to nbval alone
@@ -63,7 +70,8 @@ NBVAL_MARKER = re.compile(r"\A# NBVAL_[A-Z_]+[ \t]*\r?(\n|\Z)")  # a first line 
 # Run in the notebook's kernel after a cell that showed a demo: its caption (the first of the
 # demo's rows) and its description (the sentence that says what its picture shows), and for a
 # demo with Run/Pause a recording of its run and the description of the run's last frame, made
-# by tools/recording.py loaded from its file.  The widget is found by the model id of its view.
+# in one pass over the run by tools/recording.py (``record``) loaded from its file.  The widget
+# is found by the model id of its view.
 PROBE = """\
 import base64 as _b64, importlib.util as _iu, ipywidgets as _w
 from IPython.display import display as _display
@@ -72,13 +80,14 @@ _spec = _iu.spec_from_file_location("kfsite_recording", {recording!r})
 _recording = _iu.module_from_spec(_spec)
 _spec.loader.exec_module(_recording)
 _runs = "frame" in _demo.controls
+_run, _last = _recording.record(_demo) if _runs else (None, None)
 _display({{"{mime}": {{
     "caption": _demo.children[0].value,
     "description": _demo.description.text,
-    "recording": _b64.b64encode(_recording.record_run(_demo)).decode() if _runs else None,
-    "last_frame": _recording.description_at(_demo, _demo.controls["frame"].max) if _runs else None,
+    "recording": _b64.b64encode(_run).decode() if _runs else None,
+    "last_frame": _last,
 }}}}, raw=True)
-del _demo, _spec, _recording, _runs
+del _demo, _spec, _recording, _runs, _run, _last
 """
 
 TEMPLATE = r"""{%- extends 'index.html.j2' -%}
@@ -243,6 +252,16 @@ def mathjax_folder() -> Path:
         sys.exit("tools/build_site.py needs jupyter-server-mathjax: pip install -r requirements-dev.txt")
 
 
+def kernel_config() -> Config:
+    """Kernels that talk to the build over CurveZMQ-encrypted transport where the kernel supports it
+    (``KernelManager.transport_encryption = "auto"``, as ``make lab`` and ``make app`` start them:
+    ``binder/jupyter-config``), or over IPC (Unix sockets) where pyzmq lacks CurveZMQ; never over
+    plain TCP, which ipykernel warns about on every start."""
+    if zmq.has("curve"):
+        return Config({"KernelManager": {"transport_encryption": "auto"}})
+    return Config({"KernelManager": {"transport": "ipc"}})
+
+
 class SiteClient(NotebookClient):
     """Executes a notebook and, after every cell that showed a demo, asks the kernel for the demo's
     caption, its description and the recording of its run; the demo's output becomes a static figure."""
@@ -252,6 +271,7 @@ class SiteClient(NotebookClient):
         self.media = media
         self.stem = stem
         self.demos: list[dict] = []
+        self.demo_seconds = 0.0  # asking the kernel about its demos: captions, descriptions, recordings
 
     async def async_execute_cell(self, cell, cell_index, execution_count=None, store_history=True):
         cell = await super().async_execute_cell(cell, cell_index, execution_count, store_history)
@@ -265,6 +285,10 @@ class SiteClient(NotebookClient):
             data = out.get("data", {})
             if WIDGET_VIEW in data and "image/png" in data:  # a Demo: widget view + first frame
                 outputs.append(await self._static_demo(out, cell_index))
+            elif is_stream(out) and outputs and is_stream(outputs[-1], out["name"]):
+                # Printed text arrives in pieces, cut wherever the kernel flushed (which depends on
+                # what else runs on the machine); JupyterLab shows consecutive pieces as one block.
+                outputs[-1]["text"] += out["text"]
             else:
                 data.pop(WIDGET_VIEW, None)  # no widget manager on a static page
                 outputs.append(out)
@@ -275,7 +299,9 @@ class SiteClient(NotebookClient):
     async def _static_demo(self, out, cell_index: int):
         model_id = out["data"][WIDGET_VIEW]["model_id"]
         probe = nbformat.v4.new_code_cell(PROBE.format(model_id=model_id, mime=PROBE_MIME, recording=str(RECORDING)))
+        t0 = time.monotonic()
         await super().async_execute_cell(probe, cell_index, store_history=False)
+        self.demo_seconds += time.monotonic() - t0
         found = [o["data"][PROBE_MIME] for o in probe.outputs if PROBE_MIME in o.get("data", {})]
         if not found:
             raise RuntimeError(f"{self.stem}: cell {cell_index}: no answer about demo {model_id}: {probe.outputs}")
@@ -292,6 +318,11 @@ class SiteClient(NotebookClient):
         width = out.get("metadata", {}).get("image/png", {}).get("width", 950)
         figure = static_figure(info["caption"], info["description"], out["data"]["image/png"], recording, width)
         return nbformat.v4.new_output("display_data", data={"text/html": figure})
+
+
+def is_stream(out, name: str | None = None) -> bool:
+    """Whether the output ``out`` is printed text (of the stream ``name``, if given)."""
+    return out.get("output_type") == "stream" and (name is None or out.get("name") == name)
 
 
 def recording_alt(last_frame: str) -> str:
@@ -365,7 +396,17 @@ def link_pages(body: str) -> str:
     return re.sub(r'href="([^":/?#]+)\.ipynb(#[^"]*)?"', lambda m: f'href="{m[1]}.html{m[2] or ""}"', body)
 
 
-def build(out: Path, folder: Path) -> list[dict]:
+def start_order(paths: list[Path]) -> list[int]:
+    """The order in which the pages are started: the chapters from the last to the first (the later
+    ones run longer: chapter 11's experiments, chapter 10's two recordings), then the notation table and
+    the solutions.  With two at a time, the longest starts first and the short ones fill in."""
+    numbered = [i for i, p in enumerate(paths) if CHAPTER.fullmatch(p.name)]
+    return numbered[::-1] + [i for i in range(len(paths)) if i not in numbered]
+
+
+def build(out: Path, folder: Path, jobs: int = JOBS) -> list[dict]:
+    """Every page of the site into ``out``, ``jobs`` chapters executed at once (each in its own kernel)."""
+    t_start = time.monotonic()
     paths = chapters(folder)
     if not paths:
         sys.exit(f"no chapter notebooks in {folder}")
@@ -375,8 +416,10 @@ def build(out: Path, folder: Path) -> list[dict]:
     shutil.rmtree(out / "media", ignore_errors=True)
     (out / "media").mkdir()
     mathjax = out / "_static" / "mathjax"
+    t0 = time.monotonic()
     if not (mathjax / "MathJax.js").exists():
         shutil.copytree(mathjax_folder(), mathjax, ignore=shutil.ignore_patterns("localization", "*.py"))
+        print(f"_static/mathjax: copied in {time.monotonic() - t0:.1f} s", flush=True)
 
     notebooks = [nbformat.read(p, as_version=4) for p in paths]
     pages = [
@@ -389,18 +432,10 @@ def build(out: Path, folder: Path) -> list[dict]:
         extra_loaders=[jinja2.DictLoader({"kfsite.html.j2": TEMPLATE})],
         mathjax_url=MATHJAX_URL,
     )
-    for i, (path, nb) in enumerate(zip(paths, notebooks, strict=True)):
-        t0 = time.monotonic()
-        client = SiteClient(
-            nb,
-            media=out / "media",
-            stem=path.stem,
-            timeout=CELL_TIMEOUT_S,
-            kernel_name="python3",
-            store_widget_state=False,
-            resources={"metadata": {"path": str(path.parent)}},
-        )
-        client.execute()
+
+    def export(i: int) -> None:
+        """The executed notebook ``i`` as its page."""
+        nb = notebooks[i]
         without_nbval_markers(nb)
         nb.metadata.pop("widgets", None)
         nb.metadata["title"] = pages[i]["title"]  # the page's <title>
@@ -408,12 +443,52 @@ def build(out: Path, folder: Path) -> list[dict]:
         extra |= {"kf_css": SITE_CSS, "kf_script": SITE_SCRIPT}
         body, _ = exporter.from_notebook_node(nb, resources=extra)
         (out / pages[i]["href"]).write_text(link_pages(body), encoding="utf-8")
-        pages[i]["demos"] = client.demos
-        print(f"{pages[i]['href']}: {len(client.demos)} demo(s), {time.monotonic() - t0:.1f} s", flush=True)
 
+    exporting = asyncio.Lock()  # one page at a time through the exporter
+
+    async def make_page(i: int) -> None:
+        path = paths[i]
+        t0 = time.monotonic()
+        client = SiteClient(
+            notebooks[i],
+            media=out / "media",
+            stem=path.stem,
+            timeout=CELL_TIMEOUT_S,
+            kernel_name="python3",
+            store_widget_state=False,
+            resources={"metadata": {"path": str(path.parent)}},
+            config=kernel_config(),
+        )
+        await client.async_execute()
+        t1 = time.monotonic()
+        async with exporting:  # in a thread: meanwhile the other kernel's messages are still read
+            await asyncio.to_thread(export, i)
+        pages[i]["demos"] = client.demos
+        print(
+            f"{pages[i]['href']}: {len(client.demos)} demo(s), {time.monotonic() - t0:.1f} s"
+            f" (run {t1 - t0 - client.demo_seconds:.1f} s, demos' pictures and recordings"
+            f" {client.demo_seconds:.1f} s, page {time.monotonic() - t1:.1f} s)",
+            flush=True,
+        )
+
+    async def make_pages() -> None:
+        waiting = start_order(paths)
+
+        async def worker() -> None:
+            while waiting:
+                try:
+                    await make_page(waiting.pop(0))
+                except BaseException:
+                    waiting.clear()  # the other worker starts nothing new
+                    raise
+
+        await asyncio.gather(*(worker() for _ in range(max(1, jobs))))
+
+    asyncio.run(make_pages())
     items = "\n".join(f'<li><a href="{p["href"]}">{html.escape(p["title"])}</a></li>' for p in pages)
     (out / "index.html").write_text(INDEX.format(items=items), encoding="utf-8")
     (out / "demos.json").write_text(json.dumps({"pages": pages}, indent=2) + "\n", encoding="utf-8")
+    print(f"{len(pages)} pages in {time.monotonic() - t_start:.1f} s, {max(1, jobs)} at a time", flush=True)
     return pages
 
 
@@ -421,8 +496,11 @@ def main() -> None:
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     parser.add_argument("--out", type=Path, default=ROOT / "site", help="output folder (default: site/)")
     parser.add_argument("--notebooks", type=Path, default=ROOT / "notebooks", help="the chapters (default: notebooks/)")
+    parser.add_argument(
+        "--jobs", type=int, default=JOBS, help=f"chapters executed at once, each in its own kernel (default: {JOBS})"
+    )
     args = parser.parse_args()
-    pages = build(args.out.resolve(), args.notebooks.resolve())
+    pages = build(args.out.resolve(), args.notebooks.resolve(), args.jobs)
     print(f"{len(pages)} pages: {args.out / 'index.html'}")
 
 
