@@ -16,7 +16,7 @@ CH       ?=
 STAMP    := $(VENV)/.kfcourse-installed
 AXE      := node_modules/axe-core/axe.min.js
 
-.PHONY: lab app restore badges test lint bench notebooks site pins clean
+.PHONY: lab app restore badges test check lint bench notebooks site pins clean
 
 $(STAMP): binder/requirements.txt requirements-dev.txt pyproject.toml
 	$(PYTHON) -m venv $(VENV)
@@ -43,21 +43,36 @@ app: $(STAMP)
 restore:
 	@$(PYTHON) tools/course.py restore --work '$(WORK)' --chapter '$(CH)'
 
-# The parts that state facts of simulated runs: the notebooks and the run-fact tests. Besides
-# the full suite, they run under numpy's lower SIMD levels (AVX2, then the x86-64-v2 baseline:
-# another CPU's rounding; disabling a feature the CPU lacks changes nothing) and with every
-# noise draw scaled by 1 +- 1e-12 (tests/rounding.py): what they state must hold in every run.
-FACTS    := tests/sim tests/demos tests/plots tests/test_rounding.py notebooks
-NO_AVX512 := AVX512_ICL AVX512_SPR X86_V4
-UNIT     := $(BIN)/pytest -m "not browser" -n 2 --dist loadfile --nbval-lax --nbval-current-env --nbval-cell-timeout=120
+# The tests, two workers (a notebook's cells stay on one: they share its kernel), in passes:
+#  1. every test and every notebook once, the browser suite apart;
+#  2. the facts of seeded runs again (tests marked `fact` and every notebook, the `slow` ones
+#     apart: tests/facts.py): once for each numpy SIMD level below this CPU's
+#     (tests/simd_levels.py: another CPU's rounding), then with every noise draw scaled by
+#     1 +- 1e-12 (tests/rounding.py). What they state must hold in every run;
+#  3. the browser suite.
+# Each pass writes its timings to $(TIMES); the last line prints the 15 slowest tests of all.
+PYTEST   := $(BIN)/pytest -n 2 --dist loadgroup --nbval-lax --nbval-current-env --nbval-cell-timeout=120
+TIMES    := .test-times
+REPEAT   := $(PYTEST) -m "fact and not slow and not browser" tests notebooks
 
 test: $(STAMP) lint $(AXE)
-	$(UNIT) tests notebooks
-	NPY_DISABLE_CPU_FEATURES="$(NO_AVX512)" $(UNIT) $(FACTS)
-	NPY_DISABLE_CPU_FEATURES="$(NO_AVX512) X86_V3" $(UNIT) $(FACTS)
-	$(UNIT) --perturb=1e-12 $(FACTS)
-	$(UNIT) --perturb=-1e-12 $(FACTS)
-	$(BIN)/pytest -m browser tests/browser
+	@rm -rf $(TIMES) && mkdir -p $(TIMES)
+	$(PYTEST) -m "not browser" --junitxml=$(TIMES)/1-main.xml tests notebooks
+	@$(BIN)/python -m tests.simd_levels | while read -r off; do \
+	  echo "NPY_DISABLE_CPU_FEATURES=\"$$off\" $(REPEAT)"; \
+	  NPY_DISABLE_CPU_FEATURES="$$off" $(REPEAT) --junitxml="$(TIMES)/2-simd-$${off%% *}.xml" || exit 1; \
+	done
+	$(REPEAT) --perturb=1e-12 --junitxml=$(TIMES)/3-perturb-up.xml
+	$(REPEAT) --perturb=-1e-12 --junitxml=$(TIMES)/3-perturb-down.xml
+	$(BIN)/pytest -m browser --junitxml=$(TIMES)/4-browser.xml tests/browser
+	@$(BIN)/python -m tests.slowest $(TIMES)
+
+# For every day: lint, every test but the slow and the browser ones, and the notebooks that differ
+# from git's HEAD (or CH=03 08: those chapters), in at most a few minutes. make test before a push.
+CHANGED   = $(wildcard $(if $(strip $(CH)),$(foreach c,$(CH),notebooks/$(c)_*.ipynb),\
+            $(shell { git diff --name-only HEAD; git ls-files --others --exclude-standard; } -- notebooks 2>/dev/null)))
+check: $(STAMP) lint
+	$(PYTEST) -m "not slow and not browser" tests $(CHANGED)
 
 # axe-core, the accessibility checker of the browser tests, at the version package-lock.json pins:
 # installed again whenever the lock file is newer than it.
@@ -104,4 +119,4 @@ pins:
 	rm -rf .pins-venv
 
 clean:
-	rm -rf $(VENV) node_modules .pytest_cache .ruff_cache .hypothesis tests/browser/artifacts
+	rm -rf $(VENV) node_modules .pytest_cache .ruff_cache .hypothesis tests/browser/artifacts $(TIMES)

@@ -7,6 +7,12 @@ it pass in a cell whose output is not compared.
 ``--perturb=SIZE`` scales every normal draw by ``1 + SIZE``, in the tests and in the
 notebook kernels (``tests/rounding.py``): a run whose stated facts change under a
 perturbation of 1e-12 states digits of this machine's rounding, not facts.
+
+Every notebook cell is marked ``fact`` (a chapter states facts of its seeded runs) and the
+cells of one notebook are kept on one worker (``xdist_group``: they share a kernel), so
+``pytest -n 2 --dist loadgroup`` spreads notebooks and tests alike.  In a run without
+``--perturb``, a test that runs a seeded simulation without the ``fact`` marker fails
+(``tests/facts.py``): the repeats select by that marker.
 """
 
 from __future__ import annotations
@@ -32,6 +38,9 @@ def pytest_addoption(parser):
 def pytest_configure(config):
     size = config.getoption("--perturb")
     if size is None:
+        from tests import facts
+
+        facts.install()
         return
     from tests import rounding
 
@@ -44,9 +53,41 @@ def pytest_configure(config):
     os.environ["IPYTHONDIR"] = str(ipython_dir)  # the notebook kernels nbval starts read it
 
 
+def pytest_collection_modifyitems(config, items):
+    for item in items:
+        if item.path.suffix == ".ipynb":
+            item.add_marker(pytest.mark.fact)
+            item.add_marker(pytest.mark.xdist_group(item.path.name))
+
+
+@pytest.hookimpl(wrapper=True)
+def pytest_fixture_setup(fixturedef, request):
+    from tests import facts
+
+    before = facts.made()
+    result = yield
+    if facts.made() > before:  # the fixture runs a seeded simulation: so does every test that uses it
+        facts.seeded_fixtures.add(fixturedef)
+    return result
+
+
+@pytest.hookimpl(wrapper=True)
+def pytest_runtest_setup(item):
+    from tests import facts
+
+    item.generators_before = facts.made()
+    return (yield)
+
+
 @pytest.hookimpl(wrapper=True)
 def pytest_runtest_call(item):
+    from tests import facts
+
     result = yield
+    if item.config.getoption("--perturb") is None and item.path.suffix != ".ipynb":
+        complaint = facts.complaint(item)
+        if complaint:
+            pytest.fail(complaint, pytrace=False)
     for out in getattr(item, "test_outputs", None) or []:
         if out.get("output_type") == "stream" and out.get("name") == "stderr":
             pytest.fail(f"notebook cell wrote to stderr (a warning?):\n{out.get('text')}", pytrace=False)

@@ -79,6 +79,47 @@ def test_a_perturbed_notebook_run_catches_a_chaotic_digit():
     assert outcome == {"chaotic": "FAILED", "facts": "PASSED"}, result.stdout[-3000:]
 
 
+PLANTED_FACTS = """
+import pytest
+
+import kfcourse as kf
+
+
+@pytest.mark.fact
+def test_chaotic_digits():  # where chapter 7's diverged filter ends the lap, to the digits of this machine
+    assert f"{{kf.sim.run_ekf(flipped=True, seed=0).final_error:.6f}}" == "{final}"
+
+
+@pytest.mark.fact
+def test_fact():  # what chapter 7 states of the same run
+    wrong = kf.sim.run_ekf(flipped=True, seed=0)
+    assert (wrong.error > 1.0).any() and wrong.error.max() > 2.0
+"""
+
+
+def test_a_perturbed_repeat_catches_a_planted_chaotic_fact():
+    final = printed_here("print(f'{kf.sim.run_ekf(flipped=True, seed=0).final_error:.6f}', end='')")
+    folder = Path(tempfile.mkdtemp(prefix=".probe-", dir=ROOT / "tests"))  # under the root conftest
+    try:
+        (folder / "test_planted.py").write_text(PLANTED_FACTS.format(final=final))
+        command = ["pytest", "-q", "-rA", "-p", "no:cacheprovider", "-m", "fact"]
+        results = [
+            subprocess.run(
+                [sys.executable, "-m", *command, *perturb, str(folder)],
+                cwd=ROOT,
+                capture_output=True,
+                text=True,
+                timeout=300,
+            ).stdout
+            for perturb in ([], ["--perturb=1e-12"])
+        ]
+    finally:
+        shutil.rmtree(folder)
+    plain, perturbed = ({name: v for v, name in re.findall(r"^(PASSED|FAILED) \S*::(\w+)", r, re.M)} for r in results)
+    assert plain == {"test_chaotic_digits": "PASSED", "test_fact": "PASSED"}, results[0][-3000:]
+    assert perturbed == {"test_chaotic_digits": "FAILED", "test_fact": "PASSED"}, results[1][-3000:]
+
+
 def texts(fig) -> list[str]:
     """Every text the figure shows."""
     return [t.get_text() for t in fig.findobj(Text) if t.get_visible() and t.get_text()]

@@ -16,6 +16,8 @@ from kfcourse.plots import palette
 from kfcourse.plots.localization import CLOSE_UP_X, CLOSE_UP_Y
 from tests.demos.layout import readout
 
+pytestmark = pytest.mark.fact  # states facts of seeded runs: repeated under other rounding (tests/facts.py)
+
 NO_LEG, LEG = LEG_OPTIONS
 TEAL = to_rgba(palette.ESTIMATE)[:3]
 

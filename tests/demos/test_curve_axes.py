@@ -16,6 +16,8 @@ import kfcourse as kf
 from kfcourse.plots.style import FIGURE_SPACE
 from kfcourse.sim.curves import FUNCTIONS
 
+pytestmark = pytest.mark.fact  # states facts of seeded runs: repeated under other rounding (tests/facts.py)
+
 DEMOS = ["linearization", "sigma_points"]
 
 

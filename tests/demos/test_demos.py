@@ -17,6 +17,8 @@ from matplotlib.text import Text
 import kfcourse as kf
 from kfcourse.demos.hallway import DOORS
 
+pytestmark = pytest.mark.fact  # states facts of seeded runs: repeated under other rounding (tests/facts.py)
+
 DEMOS = kf.demos.__all__  # every demo the course ships gets the generic checks
 # The demos with buttons, named here so that collecting the tests builds no demo;
 # test_first_frame_is_drawn_and_repeatable checks the list against every demo.

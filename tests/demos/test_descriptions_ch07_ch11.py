@@ -25,6 +25,8 @@ from tests.demos.describing import at_the_ends, move, press, said
 from tests.demos.layout import readout, widgets_in
 from tests.demos.test_landmark_loop import reference_step
 
+pytestmark = pytest.mark.fact  # states facts of seeded runs: repeated under other rounding (tests/facts.py)
+
 SEEDS = (0, 1, 2)
 TEXT_SHADES = {palette.PREDICTION_TEXT, palette.MEASUREMENT_TEXT, palette.ESTIMATE_TEXT, palette.TRUTH_TEXT}
 

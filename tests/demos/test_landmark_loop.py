@@ -17,6 +17,8 @@ from kfcourse.filters.gaussian import ellipse_axes
 from kfcourse.plots.loop import position_errors, strip_limit
 from tests.demos.layout import readout, widgets_in
 
+pytestmark = pytest.mark.fact  # states facts of seeded runs: repeated under other rounding (tests/facts.py)
+
 
 def make(seed=0, filter=None):
     return kf.demos.landmark_loop(seed=seed, filter=filter)

@@ -10,6 +10,8 @@ import pytest
 
 import kfcourse as kf
 
+pytestmark = pytest.mark.fact  # states facts of seeded runs: repeated under other rounding (tests/facts.py)
+
 
 def test_first_frame_is_x_squared_and_the_ekf_is_the_tangent_gaussian():
     demo = kf.demos.linearization(seed=0)

@@ -13,6 +13,8 @@ from kfcourse.sim.target import filter_tracks, nees, nees_band
 from tests.demos.layout import readout
 from tests.demos.test_tracker import LAPTOP_PX, OUTPUT_PX, estimated_height, readout_lines, rows_fit_the_output
 
+pytestmark = pytest.mark.fact  # states facts of seeded runs: repeated under other rounding (tests/facts.py)
+
 
 def make(seed=0):
     return kf.demos.nees_panel(seed=seed)

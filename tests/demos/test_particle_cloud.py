@@ -22,6 +22,8 @@ from kfcourse.demos.particle_cloud import (
 from tests.demos.layout import readout
 from tests.demos.particle_drive import model_with
 
+pytestmark = pytest.mark.fact  # states facts of seeded runs: repeated under other rounding (tests/facts.py)
+
 LAPTOP_PX = 680  # a 1280x800 laptop: picture and controls (caption aside) within 680 px
 
 

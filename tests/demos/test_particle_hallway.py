@@ -14,6 +14,8 @@ from kfcourse.plots.particle_hallway import particle_hallway_view, update_partic
 from kfcourse.sim.particle_hallway import simulate_particle_hallway
 from tests.demos.particle_drive import presses
 
+pytestmark = pytest.mark.fact  # states facts of seeded runs: repeated under other rounding (tests/facts.py)
+
 
 def test_model_replays_the_run_record():
     for seed in (0, 5):

@@ -13,6 +13,8 @@ import kfcourse as kf
 from kfcourse.demos.hallway import HallwayModel
 from kfcourse.demos.raw_vs_filtered import RawVsFiltered
 
+pytestmark = pytest.mark.fact  # states facts of seeded runs: repeated under other rounding (tests/facts.py)
+
 SEEDS = range(20)
 
 

@@ -20,6 +20,8 @@ from matplotlib.patches import Ellipse
 import kfcourse as kf
 from kfcourse.plots import palette
 
+pytestmark = pytest.mark.fact  # states facts of seeded runs: repeated under other rounding (tests/facts.py)
+
 # ---------------------------------------------------------------- chapter 2: covariance ellipse
 
 

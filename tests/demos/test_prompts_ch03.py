@@ -15,6 +15,8 @@ import pytest
 import kfcourse as kf
 from kfcourse.plots import palette
 
+pytestmark = pytest.mark.fact  # states facts of seeded runs: repeated under other rounding (tests/facts.py)
+
 
 def demo():
     return kf.demos.step_through(seed=0)

@@ -16,6 +16,8 @@ import pytest
 
 import kfcourse as kf
 
+pytestmark = pytest.mark.fact  # states facts of seeded runs: repeated under other rounding (tests/facts.py)
+
 CHAPTER = Path(__file__).resolve().parents[2] / "notebooks" / "05_matrix_kalman.ipynb"
 SEEDS = range(20)
 

@@ -18,6 +18,8 @@ from kfcourse.demos.tracker import Tracker
 from kfcourse.sim.target import START_STEPS, roughness
 from tests.demos.layout import readout
 
+pytestmark = pytest.mark.fact  # states facts of seeded runs: repeated under other rounding (tests/facts.py)
+
 SEEDS = range(20)
 
 

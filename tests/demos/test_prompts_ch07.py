@@ -17,6 +17,8 @@ import pytest
 import kfcourse as kf
 from kfcourse.sim.curves import FUNCTIONS
 
+pytestmark = pytest.mark.fact  # states facts of seeded runs: repeated under other rounding (tests/facts.py)
+
 CHAPTER = Path(__file__).resolve().parents[2] / "notebooks" / "07_nonlinear_ekf.ipynb"
 RANGE = "range √(x² + 1)"
 SEEDS = range(20)

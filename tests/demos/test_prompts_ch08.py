@@ -14,6 +14,8 @@ import kfcourse as kf
 from kfcourse.demos.association import LEG_OPTIONS
 from tests.demos.layout import readout
 
+pytestmark = pytest.mark.fact  # states facts of seeded runs: repeated under other rounding (tests/facts.py)
+
 NO_LEG, LEG = LEG_OPTIONS
 SCANS = range(20)
 

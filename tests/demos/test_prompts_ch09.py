@@ -13,6 +13,8 @@ import pytest
 import kfcourse as kf
 from kfcourse.demos.sigma_points import SigmaPointsModel
 
+pytestmark = pytest.mark.fact  # states facts of seeded runs: repeated under other rounding (tests/facts.py)
+
 SQUARE, SINE, RANGE = "x²", "sin x", "range √(x² + 1)"
 SEEDS = range(20)
 

@@ -13,6 +13,8 @@ import kfcourse as kf
 from kfcourse.demos.landmark_loop import LoopModel
 from tests.demos.layout import readout
 
+pytestmark = pytest.mark.fact  # states facts of seeded runs: repeated under other rounding (tests/facts.py)
+
 SEEDS = range(20)
 BLIND = (20, 90)  # prompts 2 to 4: dropout pressed at step 20, pressed again at step 90
 

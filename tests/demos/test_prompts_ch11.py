@@ -14,6 +14,8 @@ from kfcourse.demos.particle_cloud import FIRST_FRAME
 from kfcourse.demos.particle_hallway import ParticleHallwayModel
 from tests.demos.particle_drive import model_with, presses
 
+pytestmark = pytest.mark.fact  # states facts of seeded runs: repeated under other rounding (tests/facts.py)
+
 SEEDS = range(20)
 
 

@@ -20,6 +20,8 @@ from kfcourse.plots import palette
 from kfcourse.plots.curves import ARROW, CUT
 from kfcourse.sim.curves import FUNCTIONS
 
+pytestmark = pytest.mark.fact  # states facts of seeded runs: repeated under other rounding (tests/facts.py)
+
 SQUARE, SINE, RANGE = "x²", "sin x", "range √(x² + 1)"
 TRUE_F = {SQUARE: lambda x: x * x, SINE: np.sin, RANGE: lambda x: np.sqrt(x * x + 1.0)}  # written out again here
 

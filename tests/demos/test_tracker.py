@@ -19,6 +19,8 @@ from kfcourse.filters.gaussian import ellipse_axes
 from kfcourse.sim.target import START_STEPS, filter_target, process_noise
 from tests.demos.layout import readout, widgets_in
 
+pytestmark = pytest.mark.fact  # states facts of seeded runs: repeated under other rounding (tests/facts.py)
+
 # A 1280x800 laptop: the demo's picture and controls (caption aside) within 680 px, in an output 848 px wide
 # (what tests/browser/test_notebooks_in_lab.py measures in JupyterLab).
 LAPTOP_PX, OUTPUT_PX = 680, 848

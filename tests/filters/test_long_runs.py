@@ -24,6 +24,8 @@ import pytest
 import kfcourse as kf
 from kfcourse.models import pose_mean, pose_residual, range_bearing_mean, range_bearing_residual
 
+pytestmark = pytest.mark.slow  # 10^5 steps: make test runs them once, make check leaves them out
+
 DT = 0.1  # s
 LANDMARK = np.array([5.0, 3.0])  # m
 CONTROL = np.array([1.0, 0.2])  # [V (m/s), omega (rad/s)]: a circle of radius 5 m

@@ -20,6 +20,8 @@ from kfcourse.plots.style import FigureRenderer, set_limits
 from kfcourse.plots.ukf import sigma_points_view, update_sigma_points_view
 from kfcourse.sim.curves import GaussianThroughCurve
 
+pytestmark = pytest.mark.fact  # states facts of seeded runs: repeated under other rounding (tests/facts.py)
+
 LIMITS = {"x²": (-1.0, 9.0), "sin x": (-1.25, 1.25), "range √(x² + 1)": (0.5, 5.5)}
 
 

@@ -9,6 +9,8 @@ from matplotlib.patches import Ellipse
 import kfcourse as kf
 from kfcourse.plots import palette
 
+pytestmark = pytest.mark.fact  # states facts of seeded runs: repeated under other rounding (tests/facts.py)
+
 
 @pytest.fixture(scope="module")
 def runs():

@@ -13,6 +13,8 @@ from matplotlib.path import Path
 import kfcourse as kf
 from kfcourse.plots import palette
 
+pytestmark = pytest.mark.fact  # states facts of seeded runs: repeated under other rounding (tests/facts.py)
+
 
 def test_a_predicted_reading_points_at_its_landmark():
     pose, mark = np.array([1.0, 2.0, 0.7]), np.array([4.0, 6.0])

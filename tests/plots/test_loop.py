@@ -10,6 +10,8 @@ import pytest
 import kfcourse as kf
 from kfcourse.plots.loop import error_strips, loop_figure, loop_map, strip_limit
 
+pytestmark = pytest.mark.fact  # states facts of seeded runs: repeated under other rounding (tests/facts.py)
+
 
 def tick_values(ax) -> list[float]:
     """The y tick labels of an axis, read as numbers."""

@@ -13,6 +13,8 @@ import kfcourse as kf
 from kfcourse.filters.gaussian import ellipse_axes
 from kfcourse.plots.particles import DOT_SIZE, RESAMPLE_LINE, cloud_chart, cloud_view, update_cloud_view, weight_shades
 
+pytestmark = pytest.mark.fact  # states facts of seeded runs: repeated under other rounding (tests/facts.py)
+
 
 @pytest.fixture(scope="module")
 def run():

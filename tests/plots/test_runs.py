@@ -10,6 +10,8 @@ from matplotlib.lines import Line2D
 import kfcourse as kf
 from kfcourse.plots import palette
 
+pytestmark = pytest.mark.fact  # states facts of seeded runs: repeated under other rounding (tests/facts.py)
+
 
 def lines_by_colour(ax, colour):
     return [a for a in ax.get_lines() if a.get_color() == colour]

@@ -21,6 +21,8 @@ from kfcourse.plots.tracking import (
     velocity_tip,
 )
 
+pytestmark = pytest.mark.fact  # states facts of seeded runs: repeated under other rounding (tests/facts.py)
+
 
 @pytest.fixture(scope="module")
 def tracked():

@@ -9,6 +9,8 @@ import pytest
 import kfcourse as kf
 from kfcourse.sim.curves import FUNCTIONS, OFFSET, GaussianThroughCurve
 
+pytestmark = pytest.mark.fact  # states facts of seeded runs: repeated under other rounding (tests/facts.py)
+
 
 @pytest.mark.parametrize("name", list(FUNCTIONS))
 def test_each_derivative_is_the_slope_of_its_function(name):

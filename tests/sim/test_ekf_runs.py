@@ -7,6 +7,8 @@ import pytest
 
 import kfcourse as kf
 
+pytestmark = pytest.mark.fact  # states facts of seeded runs: repeated under other rounding (tests/facts.py)
+
 
 @pytest.mark.parametrize("seed", [0, 1, 2])
 def test_right_jacobian_tracks_and_is_honest(seed):

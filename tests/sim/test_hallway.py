@@ -8,6 +8,8 @@ import pytest
 import kfcourse as kf
 from kfcourse.sim import hallway as hw
 
+pytestmark = pytest.mark.fact  # states facts of seeded runs: repeated under other rounding (tests/facts.py)
+
 
 def test_door_map_has_both_walls():
     doors = hw.hallway_doors()

@@ -7,6 +7,8 @@ import pytest
 
 import kfcourse as kf
 
+pytestmark = pytest.mark.fact  # states facts of seeded runs: repeated under other rounding (tests/facts.py)
+
 
 def rms(a) -> float:
     return float(np.sqrt(np.mean(np.square(a))))

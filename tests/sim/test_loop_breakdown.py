@@ -7,6 +7,8 @@ import pytest
 
 import kfcourse as kf
 
+pytestmark = pytest.mark.fact  # states facts of seeded runs: repeated under other rounding (tests/facts.py)
+
 
 def test_a_ukf_broken_by_extreme_noise_scales_is_reported_not_returned():
     # Odometry 100 times noisier and readings 100 times more exact than the default robot: the UKF's

@@ -16,6 +16,8 @@ import kfcourse as kf
 from kfcourse.demos.landmark_loop import GATE
 from kfcourse.sim.localization import BEARING_STD, RANGE_STD, UKF_LAM
 
+pytestmark = pytest.mark.fact  # states facts of seeded runs: repeated under other rounding (tests/facts.py)
+
 FILTERS = ["ekf", "ukf"]
 GATES = [None, GATE]
 DROPOUT = (40, 70)  # six blind seconds on the left side of the loop (the chapter's cells)

@@ -16,6 +16,8 @@ import pytest
 import kfcourse as kf
 from kfcourse.sim.localization import BEARING_STD, RANGE_STD
 
+pytestmark = pytest.mark.fact  # states facts of seeded runs: repeated under other rounding (tests/facts.py)
+
 SEEDS = range(20)
 START = np.zeros(3)  # the true start of chapter 10's lap
 C = np.array([0.0, 2.5])  # the centre of the map's symmetry (m)

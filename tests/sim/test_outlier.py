@@ -12,6 +12,8 @@ import pytest
 
 import kfcourse as kf
 
+pytestmark = pytest.mark.fact  # states facts of seeded runs: repeated under other rounding (tests/facts.py)
+
 R, Q = 0.04, 0.25  # the chapter's steady-state example (m²)
 K_INF, VAR_BAR_INF, VAR_INF = kf.steady_state_1d(R, Q)
 OUTLIER = 10 * np.sqrt(Q)  # 10 sensor standard deviations: 5 m

@@ -15,6 +15,8 @@ from kfcourse.sim.particle_hallway import (
     total_variation,
 )
 
+pytestmark = pytest.mark.fact  # states facts of seeded runs: repeated under other rounding (tests/facts.py)
+
 SEEDS = range(20)
 DOORS = kf.sim.hallway_doors()
 CLOSE = 0.1  # 5 000 particles: the worst step of seeds 0-19 is 0.06; a particle moved flips 0.0002

@@ -15,6 +15,8 @@ import pytest
 import kfcourse as kf
 from kfcourse.sim.localization import BEARING_STD, RANGE_STD
 
+pytestmark = pytest.mark.fact  # states facts of seeded runs: repeated under other rounding (tests/facts.py)
+
 SEEDS = range(20)
 KIDNAP = 60  # the kidnap of chapter 10
 SHARE = 0.05  # the fixed share injected after each resampling

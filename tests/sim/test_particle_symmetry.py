@@ -54,6 +54,8 @@ import pytest
 
 import kfcourse as kf
 
+pytestmark = pytest.mark.fact  # states facts of seeded runs: repeated under other rounding (tests/facts.py)
+
 SEEDS = range(20)
 C = np.array([0.0, 2.5])  # m: the map's centre of symmetry
 MAP = np.asarray(kf.sim.DEFAULT_LANDMARKS)

@@ -11,6 +11,8 @@ import pytest
 from kfcourse.models import range_bearing, range_bearing_residual, unicycle
 from kfcourse.sim import DEFAULT_LANDMARKS, RobotRun, loop_controls, simulate_robot
 
+pytestmark = pytest.mark.fact  # states facts of seeded runs: repeated under other rounding (tests/facts.py)
+
 ARRAYS = ["t", "u", "odometry", "start", "truth", "landmarks", "visible", "z"]
 NO_NOISE = {"v_std": 0.0, "omega_std": 0.0, "range_std": 0.0, "bearing_std": 0.0}
 

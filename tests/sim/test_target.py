@@ -29,6 +29,8 @@ from kfcourse.sim.target import (
     simulate_tracks,
 )
 
+pytestmark = pytest.mark.fact  # states facts of seeded runs: repeated under other rounding (tests/facts.py)
+
 
 def arrays(record):
     return {

@@ -9,6 +9,8 @@ import pytest
 import kfcourse as kf
 from kfcourse.sim.walk import simulate_walk
 
+pytestmark = pytest.mark.fact  # states facts of seeded runs: repeated under other rounding (tests/facts.py)
+
 ARRAYS = ("t", "u", "truth", "z", "mu_bar", "var_bar", "innovation", "S", "K", "mu", "var")
 
 

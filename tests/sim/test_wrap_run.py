@@ -7,6 +7,8 @@ import pytest
 
 import kfcourse as kf
 
+pytestmark = pytest.mark.fact  # states facts of seeded runs: repeated under other rounding (tests/facts.py)
+
 
 @pytest.fixture(scope="module")
 def runs():

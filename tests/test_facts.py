@@ -1,0 +1,111 @@
+"""The ``fact`` marker's guard finds a test that runs a seeded simulation unmarked (``tests/facts.py``).
+
+Each test here writes a small test file under ``tests/`` (so the root conftest governs it),
+runs pytest on it in a fresh process as ``make test``'s first pass runs, and reads the verdicts.
+"""
+
+from __future__ import annotations
+
+import re
+import shutil
+import subprocess
+import sys
+import tempfile
+from pathlib import Path
+
+from tests.simd_levels import repeats
+
+ROOT = Path(__file__).resolve().parents[1]
+
+PLANTED = """
+import pytest
+
+import kfcourse as kf
+from tests import facts
+
+
+def test_unmarked_run():
+    assert kf.sim.simulate_walk(seed=0).truth.size > 0
+
+
+@pytest.mark.fact
+def test_marked_run():
+    assert kf.sim.simulate_walk(seed=0).truth.size > 0
+
+
+def test_unmarked_shared_run():
+    assert facts.shared(kf.sim.simulate_walk, seed=0).truth.size > 0
+
+
+@pytest.fixture(scope="module")
+def walk():
+    return kf.sim.simulate_walk(seed=1)
+
+
+@pytest.mark.fact
+def test_marked_first_user_of_a_seeded_fixture(walk):
+    assert walk.truth.size > 0
+
+
+def test_unmarked_later_user_of_a_seeded_fixture(walk):
+    assert walk.truth.size > 0
+
+
+@pytest.mark.fact
+def test_marked_without_a_run():
+    assert sum([1, 2]) == 3
+
+
+def test_unmarked_without_a_run():
+    assert sum([1, 2]) == 3
+"""
+
+
+def verdicts(source: str, *options: str) -> tuple[dict[str, str], str]:
+    """Run pytest on ``source`` as a test file under tests/; each test's verdict, and the output."""
+    folder = Path(tempfile.mkdtemp(prefix=".probe-", dir=ROOT / "tests"))
+    try:
+        (folder / "test_planted.py").write_text(source)
+        result = subprocess.run(
+            [sys.executable, "-m", "pytest", "-q", "-rA", "-p", "no:cacheprovider", *options, str(folder)],
+            cwd=ROOT,
+            capture_output=True,
+            text=True,
+            timeout=300,
+        )
+    finally:
+        shutil.rmtree(folder)
+    found = re.findall(r"^(PASSED|FAILED) \S*::(\w+)", result.stdout, re.M)
+    return {name: verdict for verdict, name in found}, result.stdout
+
+
+def test_the_guard_fails_an_unmarked_test_that_runs_a_seeded_simulation():
+    outcome, output = verdicts(PLANTED)
+    assert outcome == {
+        "test_unmarked_run": "FAILED",
+        "test_marked_run": "PASSED",
+        "test_unmarked_shared_run": "FAILED",
+        "test_marked_first_user_of_a_seeded_fixture": "PASSED",
+        "test_unmarked_later_user_of_a_seeded_fixture": "FAILED",
+        "test_marked_without_a_run": "PASSED",
+        "test_unmarked_without_a_run": "PASSED",
+    }, output[-3000:]
+    assert "is not marked 'fact'" in output, output[-3000:]
+
+
+def test_the_repeats_select_only_the_marked_tests():
+    outcome, output = verdicts(PLANTED, "-m", "fact", "--perturb=1e-12")
+    assert set(outcome) == {
+        "test_marked_run",
+        "test_marked_first_user_of_a_seeded_fixture",
+        "test_marked_without_a_run",
+    }
+    assert outcome["test_marked_run"] == "PASSED", output[-3000:]
+
+
+def test_simd_repeats_are_the_levels_below_this_cpus():
+    avx512 = {"X86_V2": True, "X86_V3": True, "X86_V4": True, "AVX512_ICL": True, "AVX512_SPR": False}
+    assert repeats(avx512) == ["X86_V4 AVX512_ICL", "X86_V3 X86_V4 AVX512_ICL"]  # as AVX2, then as the baseline
+    assert repeats({"X86_V2": True, "X86_V3": True, "X86_V4": False}) == ["X86_V3"]
+    assert repeats({"X86_V2": True, "X86_V3": False}) == []  # nothing lower to stand in for
+    assert repeats({"ASIMD": True}) == []  # another architecture
