@@ -13,7 +13,9 @@ an event loop, as in the kernel, so the picture timed is the light one a moving 
 sends; the crisp one follows once the student stops and is not in these figures.
 Targets: median <= 50 ms, p95 <= 100 ms.  The column "frame ms" is the median
 of the animation frame changes alone: what one picture of Run costs the kernel
-(Run shows one every 80 ms).
+(Run shows one every 80 ms).  The columns "cpu median" and "cpu p95" are the same changes in
+the kernel thread's CPU time: on a machine shared with other work, where the wall clock also
+counts the time the kernel waits for a core, they are the figures to compare before and after.
 """
 
 from __future__ import annotations
@@ -43,9 +45,13 @@ def sweep_values(control) -> list:
     return [v.item() for v in values]
 
 
+CPU_TIMES: list[float] = []  # the kernel thread's CPU time of every change timed, in ms
+
+
 def timed(change) -> float:
-    t0 = time.perf_counter()
+    t0, c0 = time.perf_counter(), time.thread_time()
     change()
+    CPU_TIMES.append(1e3 * (time.thread_time() - c0))
     return 1e3 * (time.perf_counter() - t0)
 
 
@@ -84,15 +90,23 @@ async def in_event_loop(name: str) -> tuple[list[float], list[float]]:
 
 
 def main(names=DEMOS) -> None:
-    print(f"{'demo':<20}{'changes':>8}{'median ms':>11}{'p95 ms':>9}{'max ms':>9}{'frame ms':>10}")
+    print(
+        f"{'demo':<20}{'changes':>8}{'median ms':>11}{'p95 ms':>9}{'max ms':>9}{'frame ms':>10}"
+        f"{'cpu median':>12}{'cpu p95':>9}"
+    )
     ok = True
     for name in names:
+        CPU_TIMES.clear()
         samples, frames = asyncio.run(in_event_loop(name))
+        cpu = np.array(CPU_TIMES)
         ms = np.array(samples)
         med, p95 = np.median(ms), np.percentile(ms, 95)
         ok &= med <= MEDIAN_TARGET and p95 <= P95_TARGET
         frame = f"{np.median(frames):>10.1f}" if frames else f"{'-':>10}"
-        print(f"{name:<20}{ms.size:>8}{med:>11.1f}{p95:>9.1f}{ms.max():>9.1f}{frame}")
+        print(
+            f"{name:<20}{ms.size:>8}{med:>11.1f}{p95:>9.1f}{ms.max():>9.1f}{frame}"
+            f"{np.median(cpu):>12.1f}{np.percentile(cpu, 95):>9.1f}"
+        )
     verdict = "met" if ok else "NOT met"
     print(f"targets (median <= {MEDIAN_TARGET:.0f} ms, p95 <= {P95_TARGET:.0f} ms): {verdict}")
 

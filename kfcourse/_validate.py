@@ -2,12 +2,15 @@
 
 Each check returns a clean ``float`` array (or ``float``) and raises
 ``ValueError`` whose message starts with the argument's name and says what was
-expected.  Every call checks its inputs in full, with plain numpy.
+expected.  Every call checks its inputs in full.  A small array (a pose, a reading, a
+3x3 covariance) is checked on Python floats, where one numpy call would cost more than
+the whole check; a large one with numpy.  Both paths test the same thing.
 """
 
 from __future__ import annotations
 
 import math
+import operator
 from collections.abc import Callable, Mapping
 
 import numpy as np
@@ -15,6 +18,7 @@ import numpy as np
 _SYM_RTOL = 1e-9  # relative asymmetry tolerated in a covariance
 _PSD_RTOL = 1e-9  # relative negative eigenvalue tolerated in a covariance
 _SUM_ATOL = 1e-6  # how far a probability vector may be from summing to 1
+_SMALL = 16  # entries: an array this small is checked on Python floats
 
 
 def _floats(x, name: str) -> np.ndarray:
@@ -28,13 +32,15 @@ def _floats(x, name: str) -> np.ndarray:
 def finite(x, name: str) -> np.ndarray:
     """Return ``x`` as a float array, rejecting NaN, inf and non-numbers."""
     a = _floats(x, name)
-    if not np.isfinite(a).all():
+    if not (all(map(math.isfinite, a.ravel().tolist())) if a.size <= _SMALL else np.isfinite(a).all()):
         raise ValueError(f"{name} must be finite (no NaN or inf), got {x!r}")
     return a
 
 
 def scalar(x, name: str) -> float:
     """A finite real number."""
+    if isinstance(x, float) and math.isfinite(x):  # already one (a Python or numpy float)
+        return float(x)
     a = finite(x, name)
     if a.size != 1:
         raise ValueError(f"{name} must be a scalar, got shape {a.shape}")
@@ -135,13 +141,43 @@ def covariance(x, name: str, n: int | None = None) -> np.ndarray:
     singular covariance is fine, such as the process noise of a constant-velocity model.
     """
     a = _square(finite(x, name), name, n)
-    scale = np.abs(a).max()
-    if np.abs(a - a.T).max() > _SYM_RTOL * scale:
+    if a.size <= _SMALL:  # the same tests on Python floats
+        entries, mirrored = a.ravel().tolist(), a.T.ravel().tolist()
+        scale = max(map(abs, entries))
+        asymmetry = max(map(abs, map(operator.sub, entries, mirrored)))
+    else:
+        scale, asymmetry = np.abs(a).max(), np.abs(a - a.T).max()
+    if asymmetry > _SYM_RTOL * scale:
         raise ValueError(f"{name} must be a symmetric covariance matrix, got {a.tolist()}")
-    lowest = np.linalg.eigvalsh(a)[0]
+    if _positive_definite(a):
+        return a  # the common case: every eigenvalue above 0
+    lowest = np.linalg.eigvalsh(a)[0]  # semi-definite is fine: look at the smallest eigenvalue
     if lowest < -_PSD_RTOL * scale:
         raise ValueError(f"{name} must be positive semi-definite (a covariance), but has eigenvalue {lowest:.3g}")
     return a
+
+
+def _positive_definite(a: np.ndarray) -> bool:
+    """Whether the Cholesky factorisation of the symmetric matrix ``a`` (from its lower triangle) finds
+    every pivot > 0, which holds when ``a`` is positive definite (up to rounding far below the tolerance
+    of :func:`covariance`); by hand on Python floats for a small matrix, by numpy for a large one."""
+    if a.size > _SMALL:
+        try:
+            np.linalg.cholesky(a)
+        except np.linalg.LinAlgError:
+            return False
+        return True
+    rows = a.tolist()
+    L = []  # A = L L^T, row by row
+    for i, row in enumerate(rows):
+        Li = []
+        for j in range(i):  # L_ij = (A_ij - sum_k L_ik L_jk) / L_jj
+            Li.append((row[j] - sum(map(operator.mul, Li, L[j]))) / L[j][j])
+        pivot = row[i] - sum(map(operator.mul, Li, Li))  # L_ii^2 = A_ii - sum_k L_ik^2
+        if not pivot > 0.0:
+            return False
+        L.append([*Li, math.sqrt(pivot)])
+    return True
 
 
 def covariance_stack(x, name: str, N: int, n: int) -> np.ndarray:

@@ -45,11 +45,18 @@ def wrap_angle(a):
     """
     a = v.finite(a, "a")
     # a - 2 pi k with k chosen for (-pi, pi]; angles already in range are returned unchanged.
-    # np.mod keeps huge angles in range (a - 2 pi ceil(...) did not beyond ~1e16), and it
+    # The modulo keeps huge angles in range (a - 2 pi ceil(...) did not beyond ~1e16), and it
     # can round up to exactly 2 pi, which would give -pi: that end maps to pi.
-    out = np.where((a > -np.pi) & (a <= np.pi), a, np.pi - np.mod(np.pi - a, 2.0 * np.pi))
-    out = np.where(out <= -np.pi, np.pi, out)
-    return float(out) if out.ndim == 0 else out
+    if a.ndim == 0:  # one angle, on a Python float: Python's % rounds as np.mod does, bit for bit
+        x = float(a)
+        out = x if -math.pi < x <= math.pi else math.pi - (math.pi - x) % (2.0 * math.pi)
+        return math.pi if out <= -math.pi else out
+    out = a.copy()
+    outside = ~((a > -np.pi) & (a <= np.pi))
+    if outside.any():  # only the angles out of range are computed
+        wrapped = np.pi - np.mod(np.pi - a[outside], 2.0 * np.pi)
+        out[outside] = np.where(wrapped <= -np.pi, np.pi, wrapped)
+    return out
 
 
 def numeric_jacobian(f: Callable, x, eps: float = 1e-6, residual: Callable | None = None) -> np.ndarray:
@@ -170,8 +177,8 @@ def unicycle(state, u, dt) -> np.ndarray:
         Next pose, heading wrapped to (-pi, pi].
     """
     s, c, dt = _pose_control(state, u, dt)
-    V, w = c[..., 0], c[..., 1]
-    x, y, th = s[..., 0], s[..., 1], s[..., 2]
+    V, w = c.T  # numbers for one control, columns for a stack
+    x, y, th = s.T
     half = 0.5 * w * dt
     d = V * dt * np.sinc(half / np.pi)  # chord length: V dt sin(half) / half (np.sinc(t) = sin(pi t) / (pi t))
     out = np.empty(s.shape)
@@ -204,7 +211,7 @@ def unicycle_jacobian(state, u, dt) -> np.ndarray:
     """
     s, (V, w), dt = _pose_control(state, u, dt, one_pose=True)
     half = 0.5 * w * dt
-    d = V * dt * np.sinc(half / np.pi)  # chord length
+    d = V * dt * (math.sin(half) / half if half else 1.0)  # chord length: V dt sin(half) / half
     phi = s[2] + half  # heading of the chord
     return np.array([[1.0, 0.0, -d * math.sin(phi)], [0.0, 1.0, d * math.cos(phi)], [0.0, 0.0, 1.0]])
 
@@ -234,7 +241,7 @@ def unicycle_control_jacobian(state, u, dt) -> np.ndarray:
     """
     pose, (V, w), dt = _pose_control(state, u, dt, one_pose=True)
     h = 0.5 * w * dt
-    s = float(np.sinc(h / np.pi))  # sin(h) / h
+    s = math.sin(h) / h if h else 1.0  # sin(h) / h, 1 in the limit h -> 0
     ds = (math.cos(h) - s) / h if abs(h) > 1e-3 else -h / 3  # ds/dh; the series near 0 avoids 0/0
     d, phi = V * dt * s, pose[2] + h
     c, n = math.cos(phi), math.sin(phi)
@@ -247,21 +254,18 @@ def unicycle_control_jacobian(state, u, dt) -> np.ndarray:
     )
 
 
-def _offset(s, m):
-    """The landmark's offset from the pose(s) and its squared length: (dx, dy, q)."""
-    dx, dy = m[0] - s[..., 0], m[1] - s[..., 1]
-    return dx, dy, dx * dx + dy * dy  # q = dx^2 + dy^2
-
-
-def _pose_landmark(state, landmark, one_pose: bool = False):
-    """Checked pose(s) and landmark, the landmark away from every pose."""
+def _pose_offset(state, landmark, one_pose: bool = False):
+    """Checked pose(s), and the landmark's offset from each, the landmark away from every pose:
+    (s, dx, dy, q), with q = dx^2 + dy^2 (numbers for one pose, columns for a stack)."""
     s = _rows(state, "state", 3)
     if one_pose and s.ndim != 1:  # a Jacobian is taken at one point
         raise ValueError(f"state must have shape (3,), got {s.shape}")
     m = v.vector(landmark, "landmark", 2)
-    if np.any(_offset(s, m)[2] == 0.0):
+    dx, dy = m[0] - s.T[0], m[1] - s.T[1]
+    q = dx * dx + dy * dy  # q = dx^2 + dy^2
+    if np.count_nonzero(q == 0.0):
         raise ValueError("landmark must not sit exactly at the robot's position (bearing undefined)")
-    return s, m
+    return s, dx, dy, q
 
 
 def range_bearing(state, landmark) -> np.ndarray:
@@ -284,11 +288,10 @@ def range_bearing(state, landmark) -> np.ndarray:
     ndarray, shape (2,) or (N, 2)
         ``[r, phi]``, bearing wrapped to (-pi, pi].
     """
-    s, m = _pose_landmark(state, landmark)
-    dx, dy, q = _offset(s, m)
+    s, dx, dy, q = _pose_offset(state, landmark)
     out = np.empty((*s.shape[:-1], 2))
     out[..., 0] = np.sqrt(q)  # r = sqrt(q)
-    out[..., 1] = wrap_angle(np.arctan2(dy, dx) - s[..., 2])  # phi = atan2(dy, dx) - theta, wrapped
+    out[..., 1] = wrap_angle(np.arctan2(dy, dx) - s.T[2])  # phi = atan2(dy, dx) - theta, wrapped
     return out
 
 
@@ -306,8 +309,7 @@ def range_bearing_jacobian(state, landmark) -> np.ndarray:
     -------
     ndarray, shape (2, 3)
     """
-    s, m = _pose_landmark(state, landmark, one_pose=True)
-    dx, dy, q = _offset(s, m)
+    _, dx, dy, q = _pose_offset(state, landmark, one_pose=True)
     r = math.sqrt(q)
     return np.array([[-dx / r, -dy / r, 0.0], [dy / q, -dx / q, -1.0]])
 

@@ -46,7 +46,10 @@ class LoopModel:
     kidnap : int or None
         The step at which the true robot is carried off, or None.
     run : LoopRun
-        ``kf.sim.landmark_loop`` with these settings; recomputed once per change.
+        ``kf.sim.landmark_loop`` with these settings; recomputed once per change, from the first step
+        the change affects (a kidnap or a dropout at the step shown leaves the steps before it).
+    ran : {"ekf", "ukf", "yours"}
+        The filter that made ``run``.
     failure : str or None
         What went wrong in the student's step; the run is then the course's EKF.
     frame : int
@@ -61,6 +64,7 @@ class LoopModel:
         self.motion_noise = self.sensor_noise = self.trust_motion = self.trust_sensor = 1.0
         self.blind = self.kidnap = None
         self.frame = FIRST_FRAME
+        self.run, self.ran = None, None
         self._rerun()
 
     def _rerun(self) -> None:
@@ -74,15 +78,16 @@ class LoopModel:
             "kidnap": self.kidnap,
             "gate": GATE,
         }
+        since = self.run if self.ran != YOURS else None  # the course's filter: the steps it shares are copied
         self.failure = None
         if self.filter != YOURS:
-            self.run = run_loop(self.seed, filter=self.filter, **settings)
+            self.run, self.ran = run_loop(self.seed, filter=self.filter, since=since, **settings), self.filter
             return
         try:
-            self.run = run_loop(self.seed, filter=self.step, **settings)
+            self.run, self.ran = run_loop(self.seed, filter=self.step, **settings), YOURS
         except ValueError as err:  # the student's step broke: say how, and show the course's EKF meanwhile
             self.failure = str(err)
-            self.run = run_loop(self.seed, filter="ekf", **settings)
+            self.run, self.ran = run_loop(self.seed, filter="ekf", since=since, **settings), "ekf"
 
     def set_filter(self, name: str) -> None:
         self.filter = name if name == YOURS else name.lower()

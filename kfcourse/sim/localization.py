@@ -182,6 +182,7 @@ def localize(
     *,
     mu0=None,
     identify: Callable | None = None,
+    known: tuple[int, Track] | None = None,
 ) -> Track:
     """The localization loop of chapter 8: at each step predict with the odometry, then for each
     reading in view, find which landmark it belongs to, gate it and update with it, one landmark at a time.
@@ -205,6 +206,10 @@ def localize(
         Which landmark of the map a reading belongs to, worked out by the filter
         (:func:`nearest_landmark`), or ``None`` to refuse it.  By default the readings
         are labelled: the reading of landmark ``j`` is used as landmark ``j``'s.
+    known : (int, Track), optional
+        ``(k0, track)``: the first ``k0`` steps are already known, from a track of this filter
+        over a world that is the same up to step ``k0``; they are copied, and the loop carries on
+        from the estimate after step ``k0 - 1`` (a demo that changes only what comes later).
 
     Returns
     -------
@@ -215,7 +220,15 @@ def localize(
     mu_bar, Sig_bar = np.empty((T, *mu.shape)), np.empty((T, *Sig.shape))
     mus, Sigs, used = np.empty_like(mu_bar), np.empty_like(Sig_bar), np.zeros((T, L), dtype=bool)
     matched = np.full((T, L), -1)
-    for k in range(T):
+    k0 = 0
+    if known is not None:  # copy the steps already known, then carry on from the last of them
+        k0, track = known
+        mine = {"mu_bar": mu_bar, "Sig_bar": Sig_bar, "mu": mus, "Sig": Sigs, "used": used, "matched": matched}
+        for name, rows in mine.items():
+            rows[:k0] = getattr(track, name)[:k0]
+        if k0:
+            mu, Sig = mus[k0 - 1].copy(), Sigs[k0 - 1].copy()
+    for k in range(k0, T):
         mu, Sig = predict(mu, Sig, world.odometry[k])  # 1. predict with the odometry
         mu_bar[k], Sig_bar[k] = mu, Sig
         for j in np.flatnonzero(world.visible[k]):  # sequential updates, one reading at a time
@@ -226,6 +239,28 @@ def localize(
                 used[k, j], matched[k, j] = True, i
         mus[k], Sigs[k] = mu, Sig
     return Track(mu_bar=mu_bar, Sig_bar=Sig_bar, mu=mus, Sig=Sigs, used=used, matched=matched)
+
+
+def _steps_in_common(old: LoopRun, world: RobotRun, mu0, setting: dict) -> int:
+    """How many first steps a run of the filter ``setting`` over ``world`` from ``mu0`` shares with the run
+    ``old``: none if the filter, the noise it assumes or its start changed; else all of them up to the
+    first step at which the world tells the filter something else (odometry, which landmarks it reads,
+    or a reading)."""
+    T = world.visible.shape[0]
+    mine = (setting["filter"], setting["wrap_bearing"], setting["gate"], setting["labelled"], *setting["noise"][2:])
+    theirs = (old.filter, old.wrap_bearing, old.gate, old.labelled, old.filter_motion_noise, old.filter_sensor_noise)
+    if (
+        mine != theirs
+        or (old.t.size, old.dt) != (T, world.dt)
+        or not (np.array_equal(old.mu0, mu0) and np.array_equal(old.landmarks, world.landmarks))
+    ):
+        return 0
+    same = (
+        (old.odometry == world.odometry).all(axis=1)
+        & ((old.used | old.rejected) == world.visible).all(axis=1)  # what it could read, gated or not
+        & (old.z == world.z).all(axis=(1, 2))
+    )
+    return T if same.all() else int(np.argmin(same))  # the first step that differs
 
 
 def loop_filter(filter: str, dt: float, M, Q, wrap_bearing: bool = True) -> tuple[Callable, Callable]:
@@ -387,6 +422,7 @@ def landmark_loop(
     sensor_range: float = 4.0,
     start=None,
     labelled: bool = True,
+    since: LoopRun | None = None,
 ) -> LoopRun:
     r"""Drive the loop of :func:`loop_controls` through a map and localize with an EKF, a UKF or your own step.
 
@@ -451,6 +487,11 @@ def landmark_loop(
         gated by ``gate``, always the nearest without one), and uses it as that
         landmark's reading; ``LoopRun.matched`` records the match.  Only for "ekf" and
         "ukf": a step function gets labelled readings.
+    since : LoopRun, optional
+        A run of the course's EKF or UKF this one may start from: the steps it shares with ``since`` (the filter
+        with the same noise, start and gate over a world the same up to then) are copied from it
+        instead of computed again; the result is the same, to the last bit.  A demo passes its
+        last run, so that a kidnap or a dropout set at step k reruns only the steps from k on.
 
     Returns
     -------
@@ -479,26 +520,29 @@ def landmark_loop(
         raise ValueError(
             "labelled=False leaves the association to the course's filters only; a step function gets labelled readings"
         )
+    if since is not None and not isinstance(since, LoopRun):
+        raise ValueError(f"since must be a LoopRun (a run of landmark_loop) or None, got {type(since).__name__}")
     drive = {"sensor_range": sensor_range, "laps": laps, "kidnap": kidnap, "dropout": dropout, "one_back": one_back}
     world = loop_world(seed, motion_noise, sensor_noise, landmarks, **drive)
     mu0 = world.start if mu0 is None else mu0
     dt = world.dt
     M = np.diag([trust_motion * V_STD, trust_motion * OMEGA_STD]) ** 2  # the odometry noise the filter assumes
     Q = np.diag([trust_sensor * RANGE_STD, trust_sensor * BEARING_STD]) ** 2  # the reading noise it assumes
+    noise = (motion_noise, sensor_noise, trust_motion, trust_sensor)
+    setting = {"filter": name, "wrap_bearing": wrap_bearing, "gate": gate, "labelled": labelled, "noise": noise}
     if callable(filter):
         track = localize_with_step(world, filter, SIG0, M, Q, np.inf if gate is None else gate, name, mu0)
     else:
         predict, update = loop_filter(filter, dt, M, Q, wrap_bearing)
         accept = None if gate is None or not labelled else gate_within(gate, Q, wrap_bearing)
         identify = None if labelled else nearest_landmark(world.landmarks, gate, Q, wrap_bearing)  # gates too
+        known = None if since is None else (_steps_in_common(since, world, mu0, setting), since)
         try:
-            track = localize(world, predict, update, SIG0, accept, mu0=mu0, identify=identify)
+            track = localize(world, predict, update, SIG0, accept, mu0=mu0, identify=identify, known=known)
         except ValueError as err:  # a covariance no longer positive semi-definite, at extreme noise
             raise ValueError(
                 f"the {filter.upper()} broke down with {motion_noise=} and {sensor_noise=}: {err}"
             ) from None
-    noise = (motion_noise, sensor_noise, trust_motion, trust_sensor)
-    setting = {"filter": name, "wrap_bearing": wrap_bearing, "gate": gate, "labelled": labelled, "noise": noise}
     return _loop_run(world, track, mu0, **setting)
 
 

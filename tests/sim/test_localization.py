@@ -9,7 +9,9 @@ import numpy as np
 import pytest
 
 import kfcourse as kf
-from kfcourse.sim.localization import SIG0, _position_nees
+from kfcourse.sim.localization import SIG0, _position_nees, _steps_in_common, loop_world
+
+pytestmark = pytest.mark.fact  # states facts of seeded runs: repeated under other rounding (tests/facts.py)
 
 
 @pytest.fixture(scope="module")
@@ -368,3 +370,50 @@ def test_an_ellipse_too_small_to_invert_has_an_infinite_nees_without_a_warning()
         warnings.simplefilter("error")
         nees = _position_nees(err, Sxy)
     assert nees[0] == np.inf and nees[1] == 0.0
+
+
+def _bit_for_bit(a, b) -> None:
+    for name in a.__dataclass_fields__:
+        x, y = getattr(a, name), getattr(b, name)
+        if isinstance(x, np.ndarray):
+            assert x.shape == y.shape and x.dtype == y.dtype and x.tobytes() == y.tobytes(), name
+        else:
+            assert x == y, name
+
+
+@pytest.mark.parametrize("filter", ["ekf", "ukf"])
+@pytest.mark.parametrize(
+    "change",
+    [
+        {"kidnap": 60},
+        {"kidnap": 0},
+        {"dropout": (60, 122)},
+        {"dropout": (30, 60)},
+        {"filter_motion_noise": 2.0},
+        {"sensor_noise": 1.5},
+        {"labelled": False},
+        {},
+    ],
+)
+def test_a_run_since_another_is_the_same_run_to_the_last_bit(filter, change):
+    """``since``: the steps a run shares with the last (the same filter over the same world up to a
+    kidnap or a dropout) are copied from it; the record is the one computed afresh, bit for bit."""
+    settings = {"filter": filter, "gate": 4.0, "one_back": True}
+    last = kf.sim.landmark_loop(0, **settings)
+    _bit_for_bit(
+        kf.sim.landmark_loop(0, **settings, **change, since=last), kf.sim.landmark_loop(0, **settings, **change)
+    )
+
+
+def test_since_copies_the_steps_before_a_kidnap_and_nothing_after_a_change_of_filter():
+    last = kf.sim.landmark_loop(0, gate=4.0)
+    copied = kf.sim.landmark_loop(0, gate=4.0, kidnap=60, since=last)
+    assert copied.mu[:60].tobytes() == last.mu[:60].tobytes()
+    assert copied.mu[60:].tobytes() != last.mu[60:].tobytes()
+    world = loop_world(0, kidnap=60)
+    setting = {"filter": "ekf", "wrap_bearing": True, "gate": 4.0, "labelled": True, "noise": (1.0, 1.0, 1.0, 1.0)}
+    assert _steps_in_common(last, world, world.start, setting) == 60
+    assert _steps_in_common(last, world, world.start, {**setting, "filter": "ukf"}) == 0
+    assert _steps_in_common(last, world, world.start, {**setting, "gate": 3.0}) == 0
+    with pytest.raises(ValueError, match=r"^since must be a LoopRun"):
+        kf.sim.landmark_loop(0, since="the last run")
