@@ -34,7 +34,7 @@ from __future__ import annotations
 import numpy as np
 
 from .. import _validate as v
-from ..models import pose_mean, pose_residual, range_bearing, range_bearing_residual, unicycle, wrap_angle
+from ..models import pose_mean, pose_residual, range_bearing, unicycle, wrap_angle
 from .localization import _pairs
 
 __all__ = [
@@ -194,22 +194,21 @@ def pf_weight(particles, z, landmarks, Q, log_w=None, labelled: bool = True) -> 
         raise ValueError("Q must be positive definite: a reading with no noise gives no likelihood")
     Q_inv = np.linalg.inv(Q)
     log_w = np.zeros(len(x)) if log_w is None else _log_weights(log_w, "log_w", len(x))
-    if labelled:
-        for z_j, m in zip(z, landmarks, strict=True):  # one landmark at a time, every particle at once
-            nu = range_bearing_residual(z_j, range_bearing(x, m))  # nu = z_j - h_j(x), bearing wrapped: (N, 2)
-            d2 = np.sum(nu @ Q_inv * nu, axis=1)  # nu^T Q^-1 nu for each particle
-            log_w = log_w - 0.5 * (d2 + logdet)  # (3) log N(nu; 0, Q) = -(nu^T Q^-1 nu + log det 2 pi Q) / 2
-        return log_w
     if len(z) == 0:
         return log_w  # no reading: the weights do not change
-    J, N = len(landmarks), len(x)
-    h = np.vstack([range_bearing(x, m) for m in landmarks])  # h_j'(x) of every landmark j', every particle: (J N, 2)
-    for z_j in z:  # one reading at a time, every landmark it may come from, every particle at once
-        nu = range_bearing_residual(z_j, h)  # nu_jj' = z_j - h_j'(x), bearing wrapped: (J N, 2)
-        log_p = -0.5 * (np.sum(nu @ Q_inv * nu, axis=1) + logdet).reshape(J, N)  # log N(nu_jj'; 0, Q): row j'
-        top = log_p.max(axis=0)  # the likeliest landmark for each particle: e^(log_p - top) <= 1, one of them 1
-        log_w = log_w + top + np.log(np.exp(log_p - top).sum(axis=0) / J)  # (3') log (1/J) sum_j' N(nu_jj'; 0, Q)
-    return log_w
+    h = np.stack([range_bearing(x, m) for m in landmarks])  # h_j(x): each landmark's reading, every particle: (J, N, 2)
+    if labelled:  # reading j against its own landmark j
+        nu = z[:, None, :] - h  # z_j - h_j(x): (k, N, 2)
+    else:  # reading j against every landmark j' of the map
+        nu = z[:, None, None, :] - h  # z_j - h_j'(x): (k, J, N, 2)
+    dr, dphi = nu[..., 0], wrap_angle(nu[..., 1])  # the range and the bearing (wrapped) of nu
+    d2 = Q_inv[0, 0] * dr**2 + 2.0 * Q_inv[0, 1] * dr * dphi + Q_inv[1, 1] * dphi**2  # nu^T Q^-1 nu, Q^-1 symmetric
+    log_p = -0.5 * (d2 + logdet)  # log N(nu; 0, Q) = -(nu^T Q^-1 nu + log det 2 pi Q) / 2
+    if labelled:
+        return log_w + log_p.sum(axis=0)  # (3) add every reading's log N(nu_j; 0, Q)
+    top = log_p.max(axis=1)  # the likeliest landmark j' for each reading and particle: (k, N)
+    mix = top + np.log(np.exp(log_p - top[:, None]).sum(axis=1) / len(landmarks))  # log (1/J) sum_j' N(nu_jj'; 0, Q)
+    return log_w + mix.sum(axis=0)  # (3') add every reading's log-mixture, by the log-sum-exp of (4)
 
 
 def normalise(log_w) -> np.ndarray:
