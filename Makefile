@@ -92,6 +92,7 @@ bench: $(STAMP)
 	$(BIN)/python benchmarks/bench_batch.py
 	$(BIN)/python benchmarks/bench_check.py
 	$(BIN)/python -m benchmarks.bench_link
+	$(BIN)/python -m benchmarks.bench_browser
 
 # Re-execute the notebooks and store the outputs of the NBVAL_CHECK_OUTPUT cells only.
 notebooks: $(STAMP)

@@ -39,10 +39,8 @@ import argparse
 import contextlib
 import http.client
 import os
-import shutil
 import statistics
 import sys
-import tempfile
 import time
 from collections.abc import Iterator
 from dataclasses import dataclass, field
@@ -59,10 +57,10 @@ from tests.browser.lab import (
     WIDGET_VIEW,
     PlaywrightTimeoutError,
     close_context,
+    lab_over_copy,
     open_notebook,
     read_cells,
     run_all,
-    running_lab,
     shutdown_kernels,
     wait_for_widgets,
 )
@@ -299,13 +297,9 @@ def measure_chapter(context, url: str, notebook: Path) -> list[DemoFigures]:
 @contextlib.contextmanager
 def lab_server(source: Path) -> Iterator[tuple[str, Path]]:
     """JupyterLab over a temporary copy of ``source``, as the browser suite starts it
-    (:func:`tests.browser.lab.running_lab`: autosave off, no token); yields its address and root."""
-    with tempfile.TemporaryDirectory(prefix="kfcourse-link-") as tmp:
-        base = Path(tmp)
-        root = base / "notebooks"
-        shutil.copytree(source, root, ignore=shutil.ignore_patterns(".ipynb_checkpoints", "__pycache__"))
-        with running_lab(base, root) as server:
-            yield server.url, root
+    (:func:`tests.browser.lab.lab_over_copy`: autosave off, no token); yields its address and root."""
+    with lab_over_copy(source, prefix="kfcourse-link-") as server:
+        yield server.url, server.root
 
 
 def check_link(url: str, root: Path) -> tuple[float, float]:

@@ -7,8 +7,13 @@ of notebooks (handy while writing a demo: a scratch notebook outside the repo), 
 ``KFCOURSE_CHROMIUM`` points at another Chromium binary.  Without Chromium the suite is
 skipped, or fails when ``CI=true``.
 
-Run with ``pytest -m browser tests/browser`` (add ``-s`` to see per-demo lines as they
-happen).  Screenshots and ``latency.json`` land in ``tests/browser/artifacts/``.
+Run with ``pytest -m browser tests/browser`` (add ``-s`` to see per-chapter lines as they
+happen).  Screenshots land in ``tests/browser/artifacts/``.  The suite times nothing against
+a target: ``benchmarks/bench_browser.py`` (``make bench``) measures how fast the demos answer.
+
+The site test's build (``tools/build_site.py``, several minutes of executing notebooks) starts
+with the session, at a lower CPU priority, so that it runs while the chapters are checked in
+JupyterLab (which mostly wait on the page) instead of after them.
 """
 
 from __future__ import annotations
@@ -18,13 +23,15 @@ import json
 import os
 import shutil
 import statistics
+import subprocess
+import sys
 import urllib.error
 import urllib.request
 from pathlib import Path
 
 import pytest
 
-from tests.browser.lab import LAB_SETTINGS, running_lab
+from tests.browser.lab import LAB_SETTINGS, LabApp, running_lab
 
 REPO_ROOT = Path(__file__).resolve().parents[2]
 ARTIFACTS = Path(__file__).resolve().parent / "artifacts"
@@ -48,6 +55,27 @@ def notebooks_dir() -> Path:
     """The folder under test: ``$KFCOURSE_NOTEBOOKS`` or the repo's ``notebooks/``."""
     override = os.environ.get("KFCOURSE_NOTEBOOKS")
     return Path(override).resolve() if override else REPO_ROOT / "notebooks"
+
+
+SITE_TESTS = "test_site.py"
+
+
+@pytest.fixture(scope="session")
+def next_notebook(request):
+    """``next_notebook(name)``: the notebook whose lab test runs after ``name``'s, if any (a fixture,
+    not a module global: pytest's copy of this conftest is not the one a test module imports)."""
+    order = [
+        item.callspec.params["notebook"].name
+        for item in request.session.items
+        if hasattr(item, "callspec") and "notebook" in item.callspec.params and "lab_app" in item.fixturenames
+    ]
+
+    def following(name: str) -> str | None:
+        if name in order and order.index(name) + 1 < len(order):
+            return order[order.index(name) + 1]
+        return None
+
+    return following
 
 
 def pytest_generate_tests(metafunc):
@@ -140,12 +168,71 @@ def lab_server(tmp_path_factory, chromium_executable):
         )
 
 
-# --------------------------------------------------------------------------- latency report
+# --------------------------------------------------------------------------- one page for every chapter
 
-# demo id -> {"samples_ms": [...], "decoded_ms": [...], ...}; filled by the tests.
-LATENCY: dict[str, dict] = {}
-# Lines for the end-of-run summary (latency per demo, controls nobody tested, ...).
-SUMMARY: list[str] = []
+
+@pytest.fixture(scope="session")
+def lab_app(browser, lab_server):
+    """One JupyterLab page (:class:`tests.browser.lab.LabApp`) that every chapter opens in."""
+    app = LabApp(browser, lab_server.url)
+    try:
+        yield app
+    finally:
+        app.shut()
+
+
+# --------------------------------------------------------------------------- the site, built early
+
+
+class SiteBuild:
+    """``tools/build_site.py --out <out>`` started now, at a lower CPU priority; :meth:`wait` for it."""
+
+    def __init__(self, out: Path, notebooks: Path, log: Path):
+        self.out = out
+        self.log = log
+        command = [sys.executable, str(REPO_ROOT / "tools" / "build_site.py"), "--out", str(out)]
+        command += ["--notebooks", str(notebooks)]
+        with open(log, "wb") as log_file:
+            self.proc = subprocess.Popen(
+                command,
+                cwd=REPO_ROOT,
+                stdout=log_file,
+                stderr=subprocess.STDOUT,
+                preexec_fn=lambda: os.nice(10),
+            )
+
+    def wait(self, timeout_s: float) -> Path:
+        try:
+            code = self.proc.wait(timeout=timeout_s)
+        except subprocess.TimeoutExpired:
+            self.stop()
+            pytest.fail(f"the site build took more than {timeout_s:.0f} s", pytrace=False)
+        if code != 0:
+            tail = self.log.read_text(errors="replace")[-6000:]
+            pytest.fail(f"the site build failed ({code}):\n{tail}", pytrace=False)
+        return self.out
+
+    def stop(self) -> None:
+        if self.proc.poll() is None:
+            self.proc.kill()
+            self.proc.wait()
+
+
+@pytest.fixture(scope="session", autouse=True)
+def site_build(request, tmp_path_factory):
+    """The site build, started with the session when a site test is selected (else None)."""
+    if not any(item.path.name == SITE_TESTS for item in request.session.items):
+        yield None
+        return
+    base = tmp_path_factory.mktemp("site")
+    build = SiteBuild(base / "out", notebooks_dir(), base / "build.log")
+    try:
+        yield build
+    finally:
+        build.stop()
+
+
+# --------------------------------------------------------------------------- figures for the benchmarks
 
 
 def _percentile(values, q: float) -> float:
@@ -168,54 +255,29 @@ def latency_stats(samples) -> dict:
     }
 
 
+# --------------------------------------------------------------------------- the report
+
+# Lines for the end-of-run summary (pictures per demo, controls nobody tested, ...).
+SUMMARY: list[str] = []
+
+
 class Report:
-    """What the tests hand back: where artifacts go, latency samples, summary lines."""
+    """What the tests hand back: where artifacts go, and summary lines."""
 
     artifacts = ARTIFACTS
-    latency = LATENCY
     summary = SUMMARY
 
 
 @pytest.fixture(scope="session")
 def report():
-    """Artifacts folder and collected numbers; latency is written to artifacts/latency.json at the end."""
+    """The artifacts folder (made) and the summary lines."""
     ARTIFACTS.mkdir(parents=True, exist_ok=True)
-    yield Report()
-    if not LATENCY:
-        return
-    report = {"demos": {}}
-    everything, decoded_all = [], []
-    for demo, rec in LATENCY.items():
-        entry = {"key_to_src": latency_stats(rec["samples_ms"]), "sliders": {}}
-        if rec["decoded_ms"]:
-            entry["key_to_decoded"] = latency_stats(rec["decoded_ms"])
-        for key, samples in rec["sliders"].items():
-            entry["sliders"][key] = latency_stats(samples)
-        report["demos"][demo] = entry
-        everything += rec["samples_ms"]
-        decoded_all += rec["decoded_ms"]
-    report["overall"] = {"key_to_src": latency_stats(everything)}
-    if decoded_all:
-        report["overall"]["key_to_decoded"] = latency_stats(decoded_all)
-    report["note"] = (
-        "ms from the keydown event of an ArrowRight on a focused slider handle to the img.kf-figure "
-        "src change (key_to_src) and to the new picture decoded (key_to_decoded), measured in the page"
-    )
-    ARTIFACTS.mkdir(parents=True, exist_ok=True)
-    (ARTIFACTS / "latency.json").write_text(json.dumps(report, indent=2) + "\n", encoding="utf-8")
+    return Report()
 
 
 def pytest_terminal_summary(terminalreporter):
-    if not LATENCY and not SUMMARY:
+    if not SUMMARY:
         return
     terminalreporter.section("kfcourse browser suite")
-    for demo, rec in LATENCY.items():
-        s = latency_stats(rec["samples_ms"])
-        terminalreporter.write_line(
-            f"latency {demo}: median {s['median_ms']:.0f} ms, p95 {s['p95_ms']:.0f} ms "
-            f"(key press -> new src, n={s['n']}, {len(rec['sliders'])} slider(s))"
-        )
     for line in SUMMARY:
         terminalreporter.write_line(line)
-    if LATENCY:
-        terminalreporter.write_line(f"details: {ARTIFACTS / 'latency.json'}")

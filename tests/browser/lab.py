@@ -1,6 +1,10 @@
 """Driving JupyterLab for the browser suite: open a notebook, Run All, read its cells back,
 wait for its widgets, take a full-page screenshot, and shut every kernel down.
 
+:class:`LabApp` is one JupyterLab page for a whole session: each chapter is opened in it as a
+tab beside the file browser (one JupyterLab load, not one per chapter), and the next chapter
+can be opened and run in a background tab (its own kernel) while the current one is checked.
+
 The checks on what comes back are in ``tests/browser/test_notebooks_in_lab.py``; driving
 one demo's controls is ``tests/browser/demo_driver.py``.
 """
@@ -10,8 +14,10 @@ from __future__ import annotations
 import contextlib
 import json
 import os
+import shutil
 import subprocess
 import sys
+import tempfile
 import time
 import urllib.error
 import urllib.parse
@@ -175,6 +181,18 @@ def running_lab(base: Path, root: Path) -> Iterator[LabServer]:
             proc.wait()
 
 
+@contextlib.contextmanager
+def lab_over_copy(source: Path, prefix: str = "kfcourse-lab-") -> Iterator[LabServer]:
+    """:func:`running_lab` over a temporary copy of the notebooks in ``source`` (the benchmarks'
+    server: what a test or benchmark does never reaches the course's notebooks)."""
+    with tempfile.TemporaryDirectory(prefix=prefix) as tmp:
+        base = Path(tmp)
+        root = base / "notebooks"
+        shutil.copytree(source, root, ignore=shutil.ignore_patterns(".ipynb_checkpoints", "__pycache__"))
+        with running_lab(base, root) as server:
+            yield server
+
+
 # --------------------------------------------------------------------------- REST helpers
 
 
@@ -187,6 +205,17 @@ def _xsrf(context, url: str) -> str:
         if cookie["name"] == "_xsrf":
             return cookie["value"]
     raise AssertionError("the server set no _xsrf cookie")
+
+
+def shutdown_sessions(context, url: str, path: str) -> None:
+    """Delete the sessions (and so the kernels) of the notebook at ``path``."""
+    headers = {"X-XSRFToken": _xsrf(context, url)}
+    response = context.request.get(f"{url}api/sessions")
+    assert response.ok, f"GET api/sessions: {response.status}"
+    for item in response.json():
+        if item.get("path") == path:
+            r = context.request.delete(f"{url}api/sessions/{item['id']}", headers=headers)
+            assert r.status in (204, 404), f"DELETE api/sessions/{item['id']}: {r.status} {r.text()}"
 
 
 def shutdown_kernels(context, url: str) -> None:
@@ -279,3 +308,136 @@ def full_page_screenshot(page, panel, path) -> None:
     page.screenshot(path=path)
     page.set_viewport_size(VIEWPORT)
     page.wait_for_timeout(200)
+
+
+def element_screenshots(page, shots, height: int = 1400) -> None:
+    """A shot of each ``(locator, path)`` in a window of the same width, ``height`` px tall (so
+    that a demo and its caption fit), resized once for all of them."""
+    if not shots:
+        return
+    page.set_viewport_size({"width": VIEWPORT["width"], "height": height})
+    try:
+        for element, path in shots:
+            element.scroll_into_view_if_needed()
+            page.wait_for_timeout(50)
+            element.screenshot(path=path)
+    finally:
+        page.set_viewport_size(VIEWPORT)
+
+
+# --------------------------------------------------------------------------- one page, many chapters
+
+# Opens a notebook in the running app (in front or in a background tab), then, in the page and
+# without holding up the caller, waits until its kernel is idle, as the status bar shows it (the
+# session's kernelDisplayStatus; a Run All sent earlier is silently dropped), and runs all its
+# cells.  window.__kfRuns[path] says how far it got.
+JS_OPEN_AND_RUN = """async ([path, activate]) => {
+    window.__kfRuns = window.__kfRuns || {};
+    const rec = window.__kfRuns[path] = {panel: null, idle: false, done: false, error: null};
+    const app = window.jupyterapp;
+    const panel = await app.commands.execute('docmanager:open', {path, options: {activate}});
+    rec.panel = panel.id;
+    (async () => {
+        try {
+            await panel.context.ready;
+            await panel.sessionContext.ready;
+            const s = panel.sessionContext;
+            while (!(s.session && s.session.kernel && s.kernelDisplayStatus === 'idle')) {
+                await new Promise(r => setTimeout(r, 50));
+            }
+            await s.session.kernel.info;
+            rec.idle = true;
+            rec.result = await app.commands.execute('notebook:run-all-cells', {widgetId: panel.id, activate: false});
+        } catch (e) {
+            rec.error = String(e);
+        }
+        rec.done = true;
+    })();
+    return panel.id;
+}"""
+
+JS_RUN_DONE = """(path) => {
+    const rec = window.__kfRuns && window.__kfRuns[path];
+    if (!rec || !rec.done) return false;
+    const panel = document.getElementById(rec.panel);
+    return !panel || !Array.from(panel.querySelectorAll('.jp-InputArea-prompt')).some(p => p.textContent.includes('*'));
+}"""
+
+# The notebook as it is closed by a test: no "save changes?" question (it ran, so it is dirty).
+JS_DISPOSE = """(path) => {
+    const rec = window.__kfRuns && window.__kfRuns[path];
+    const w = rec && rec.panel && Array.from(window.jupyterapp.shell.widgets('main')).find(w => w.id === rec.panel);
+    if (w) { w.context.model.dirty = false; w.dispose(); }
+    if (rec) delete window.__kfRuns[path];
+}"""
+
+
+class LabApp:
+    """One JupyterLab page (1280x800, the file browser open) for every chapter of a session.
+
+    :meth:`start` opens a chapter and starts its Run All without waiting (in the background
+    when ``activate`` is false); :meth:`open` brings a chapter to the front, starting it if
+    nobody did, and waits for its Run All; :meth:`close` disposes of its tab and deletes its
+    session.  Uncaught page errors collect in ``errors``.
+    """
+
+    def __init__(self, browser, url: str):
+        self.url = url
+        self.context = browser.new_context(viewport=VIEWPORT)
+        self.errors: list[str] = []
+        self.started: set[str] = set()
+        self.found = ""  # how :meth:`open` found the last chapter: opened now, or started, running, run
+        try:
+            shutdown_kernels(self.context, url)
+            self.page = self.context.new_page()
+            self.page.on("pageerror", lambda e: self.errors.append(str(e)))
+            self.page.goto(f"{url}lab?reset")
+            self.page.wait_for_function("() => !!(window.jupyterapp && window.jupyterapp.shell)")
+            self.page.evaluate("() => window.jupyterapp.restored.then(() => true)")
+            self.page.evaluate("() => window.jupyterapp.shell.activateById('filebrowser')")
+        except BaseException:
+            self.shut()
+            raise
+
+    def start(self, name: str, activate: bool = False) -> None:
+        """Open ``name`` and start its Run All once its kernel is idle; returns at once."""
+        self.page.evaluate(JS_OPEN_AND_RUN, [name, activate])
+        self.started.add(name)
+
+    def open(self, name: str, timings: dict[str, float]) -> str | None:
+        """``name`` in front, its Run All finished; its panel id, or None if Run All did not
+        finish in ``RUN_ALL_TIMEOUT_MS`` or failed to start.  Adds each phase's end to ``timings``."""
+        if name not in self.started:
+            self.start(name, activate=True)
+            self.found = "opened now"
+        else:
+            found = self.page.evaluate("(p) => window.__kfRuns[p]", name)
+            self.found = "found " + ("run" if found["done"] else "running" if found["idle"] else "starting")
+        panel_id = self.page.evaluate("(p) => window.__kfRuns[p].panel", name)
+        self.page.evaluate("(id) => window.jupyterapp.shell.activateById(id)", panel_id)
+        self.page.evaluate("() => window.jupyterapp.shell.activateById('filebrowser')")
+        timings["opened"] = time.monotonic()
+        try:
+            self.page.wait_for_function(
+                "(p) => window.__kfRuns[p].idle || window.__kfRuns[p].done", arg=name, timeout=KERNEL_IDLE_TIMEOUT_MS
+            )
+            timings["kernel idle"] = time.monotonic()
+            self.page.wait_for_function(JS_RUN_DONE, arg=name, timeout=RUN_ALL_TIMEOUT_MS, polling=100)
+        except PlaywrightTimeoutError:
+            return None
+        timings["run all"] = time.monotonic()
+        error = self.page.evaluate("(p) => window.__kfRuns[p].error", name)
+        if error:
+            raise AssertionError(f"{name}: opening it or Run All failed in the page: {error}")
+        return panel_id
+
+    def close(self, name: str) -> None:
+        """Dispose of ``name``'s tab (unsaved: the copy on disk stays as it was) and delete its session."""
+        try:
+            self.page.evaluate(JS_DISPOSE, name)
+        finally:
+            self.started.discard(name)
+            shutdown_sessions(self.context, self.url, name)
+
+    def shut(self) -> None:
+        close_context(self.context, self.url)

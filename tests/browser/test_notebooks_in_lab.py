@@ -7,11 +7,14 @@ that every widget really rendered, and, for each ``.kf-demo`` (see
 
 - a picture and a caption; the picture and all of its controls fit the notebook area at
   once (at most ``LAYOUT_MAX_PX`` tall), and the picture is never shown larger than drawn;
-- every slider (End / Home / ArrowRight), every button and the Run/Pause animation change
-  the picture, and after Pause the picture stops within one frame interval;
-- each control answers with a new picture within ``CONTROL_P95_MS`` at the 95th percentile
-  (key press or click to new ``src``), the pictures sent while something moves weigh at most
-  ``LIGHT_MAX_BYTES`` (median), and after every action the crisp picture comes to rest;
+- every slider (End, Home, then ``ARROW_PRESSES`` ArrowRight presses), every button, every
+  option of every choice and the Run/Pause animation change the picture;
+- after every control the crisp picture comes to rest (two pixels per CSS pixel), while
+  something moves the demo sends light pictures, lighter than its crisp ones, and every
+  picture holds the format it is sent as;
+- Run advances the frame and the picture; after Pause the picture comes to rest, then shows
+  no new picture and no new frame, the run did not play on to its last frame, and the button
+  is released;
 - for assistive technology: the picture's alt text is the description under it, in a polite
   live region; every slider is named by its label and announces the value its readout shows
   (also after it moved); every toggle and choice button exposes whether it is pressed, every
@@ -21,43 +24,60 @@ that every widget really rendered, and, for each ``.kf-demo`` (see
 After the demos, axe-core checks the chapter's own content (its rendered Markdown and every
 output) against the WCAG 2.1 A and AA rules: no violation.
 
+**Nothing here is timed against a target.**  How fast a control answers and how much its
+pictures weigh are figures, measured by ``benchmarks/bench_browser.py`` (``make bench``)
+against its targets; other machines are slower than ours.  The bounds that remain are ones a
+broken demo misses and a slow machine does not:
+
+- ``ANSWER_MS`` (5 s): an action that brings no new picture within it does not answer, or
+  the demo froze.  This machine answers in 100-350 ms at p95 when quiet, and its slowest
+  control took 1.8 s at p95 at a load of 25 on its two cores; a passing run never waits for
+  the bound, so it can be generous;
+- ``PLAY_MS`` (2 s): Run has moved the frame and the picture by then (its first frame comes
+  one frame interval, 80 ms, after the click; it skips frames to keep time on a slow machine);
+- ``PAUSE_REST_MS`` (10 s): the picture comes to rest after Pause; the checks that Pause
+  stopped the run are counts (no new picture or frame once at rest; not played on to the last
+  frame for more frames than before Pause), not times;
+- the light pictures' weight is compared with the same demo's crisp pictures, not with a
+  number of bytes: a demo that sends its crisp picture while moving fails, whatever the machine.
+
 The steps that drive JupyterLab are in ``tests/browser/lab.py``, the ones that drive a
-demo's controls in ``tests/browser/demo_driver.py``; this module says what must hold.
+demo's controls in ``tests/browser/demo_driver.py``; this module says what must hold.  One
+JupyterLab page serves every chapter; while one chapter is checked, the next one is opened
+and run in a background tab (its own kernel), so its kernel start and Run All cost no wait.
 """
 
 from __future__ import annotations
 
+import contextlib
 import itertools
 import time
 
 import pytest
 
 from tests.browser.axe import format_violations, run_axe
-from tests.browser.conftest import latency_stats
-from tests.browser.demo_driver import CRISP, JS_IMG_READY, DemoDriver
+from tests.browser.demo_driver import (
+    CRISP,
+    JS_IMG_READY,
+    DemoDriver,
+    demo_labels,
+    drive_every_control,
+)
 from tests.browser.lab import (
     RUN_ALL_TIMEOUT_MS,
-    VIEWPORT,
     WIDGET_VIEW,
     WIDGETS_RENDER_TIMEOUT_MS,
     PlaywrightTimeoutError,
-    close_context,
+    element_screenshots,
     full_page_screenshot,
-    open_notebook,
     read_cells,
-    run_all,
-    shutdown_kernels,
     wait_for_widgets,
 )
 from tests.plots.colour_vision import contrast
 
 pytestmark = pytest.mark.browser
 
-Latency = dict[str, list[tuple[float, float | None]]]  # slider key -> (key to src, key to decoded) in ms
-
 LAYOUT_MAX_PX = 680  # the picture and its controls, caption aside: what a 1280x800 window leaves the notebook
-CONTROL_P95_MS = 250  # key press or click to the new picture, 95th percentile per demo
-LIGHT_MAX_BYTES = 60_000  # median weight of the pictures sent while a control moves or Run plays
 FOCUS_MIN_PX = 2  # the focus ring's width (WCAG 2.4.11/2.4.13: a visible indicator)
 FOCUS_MIN_CONTRAST = 3.0  # the focus ring against the page (WCAG 1.4.11, non-text contrast)
 
@@ -185,72 +205,6 @@ def _picture_shown(page, demo, label: str, problems: list[str]) -> bool:
     return True
 
 
-def _drive_sliders(demo, driver: DemoDriver, latency: Latency) -> set[str]:
-    """Every slider moves the picture; their latency samples go to ``latency``.  Returns their keys."""
-    tested: set[str] = set()
-    sliders = demo.locator(".widget-slider")
-    for i in range(sliders.count()):
-        slider = sliders.nth(i)
-        key = DemoDriver.key_of(slider)
-        if key is None:
-            driver.problem(f"slider #{i} ({slider.inner_text().strip()!r}) has no kf-control-<key> class")
-            key = f"#{i}"
-        tested.add(key)
-        samples = driver.drive_slider(slider, key)
-        if samples:
-            latency[key] = samples
-    return tested
-
-
-def _drive_buttons(demo, driver: DemoDriver) -> set[str]:
-    """Every button but Run/Pause changes the picture.  Returns their keys."""
-    tested: set[str] = set()
-    buttons = []
-    button_locator = demo.locator(".widget-button")
-    for i in range(button_locator.count()):
-        button = button_locator.nth(i)
-        if button.evaluate("e => e.classList.contains('kf-control-play')"):
-            continue
-        key = DemoDriver.key_of(button)
-        if key is None:
-            driver.problem(f"button {button.inner_text().strip()!r} has no kf-control-<key> class")
-            key = button.inner_text().strip()
-        tested.add(key)
-        buttons.append((key, button))
-    driver.drive_buttons(buttons)
-    return tested
-
-
-def _drive_choices(demo, driver: DemoDriver) -> set[str]:
-    """Every option of every choice changes the picture.  Returns the keys of the choices driven."""
-    tested: set[str] = set()
-    choices = demo.locator(
-        ".widget-toggle-buttons, .widget-radio-box, .widget-dropdown, .widget-checkbox,"
-        " .widget-toggle-button:not(.widget-toggle-buttons .widget-toggle-button):not(.kf-control-play)"
-    )
-    for i in range(choices.count()):
-        choice = choices.nth(i)
-        key = DemoDriver.key_of(choice)
-        if key is None:
-            driver.problem(f"control {choice.inner_text().strip()!r} has no kf-control-<key> class")
-            key = f"choice#{i}"
-        if driver.drive_choice(choice, key) is not None:
-            tested.add(key)
-    return tested
-
-
-def _drive_plays(demo, driver: DemoDriver) -> set[str]:
-    """Run animates the picture (and the frame slider) and Pause stops it.  Returns their keys."""
-    tested: set[str] = set()
-    plays = demo.locator(".kf-control-play")
-    for i in range(plays.count()):
-        play = plays.nth(i)
-        tested.add(DemoDriver.key_of(play) or f"play#{i}")
-        frame = demo.locator(".widget-slider.kf-control-frame")
-        driver.drive_play(play, frame.first if frame.count() else None)
-    return tested
-
-
 def _check_accessible(demo, label: str, problems: list[str]) -> None:
     """What assistive technology is told of the demo matches what the page shows."""
     state = demo.evaluate(JS_ACCESSIBLE)
@@ -299,17 +253,6 @@ def css_hex(css: str) -> str:
     return f"#{r:02x}{g:02x}{b:02x}"
 
 
-def _record_latency(label: str, latency: Latency, report) -> None:
-    samples = [s for v in latency.values() for s in v]
-    report.latency[label] = {
-        "samples_ms": [round(s[0], 1) for s in samples],
-        "decoded_ms": [round(s[1], 1) for s in samples if s[1] is not None],
-        "sliders": {k: [round(s[0], 1) for s in v] for k, v in latency.items()},
-    }
-    ms = sorted(s[0] for s in samples)
-    print(f"\n[latency] {label}: median {ms[len(ms) // 2]:.0f} ms over {len(ms)} key presses")
-
-
 def _check_layout(demo, label: str, problems: list[str]) -> None:
     """The picture and its controls fit the notebook area at once, nothing sticks out on the right,
     and the picture is not enlarged."""
@@ -326,102 +269,82 @@ def _check_layout(demo, label: str, problems: list[str]) -> None:
         )
 
 
-def _check_speed_and_weight(driver: DemoDriver, latency: Latency, label: str, problems: list[str], report) -> None:
-    """Each control's new picture within CONTROL_P95_MS (p95); light pictures while moving."""
-    ms = sorted([s[0] for samples in latency.values() for s in samples] + driver.clicks)
-    if ms:
-        p95 = latency_stats(ms)["p95_ms"]
-        if p95 > CONTROL_P95_MS:
-            problems.append(f"{label}: a control takes {p95:.0f} ms to a new picture at p95 (limit {CONTROL_P95_MS})")
+def _check_pictures(driver: DemoDriver, label: str, problems: list[str], report) -> None:
+    """Every picture holds the format it is sent as; light pictures were sent while the controls
+    moved, and they weigh less than the demo's crisp ones (median against median)."""
     pictures = driver.pictures()
-    light = sorted(p["bytes"] for p in pictures if p["bytes"] and p["type"] != CRISP)
-    crisp = sorted(p["bytes"] for p in pictures if p["bytes"] and p["type"] == CRISP)
-    if light and light[len(light) // 2] > LIGHT_MAX_BYTES:
-        problems.append(f"{label}: pictures sent while moving weigh {light[len(light) // 2] / 1e3:.0f} KB (median)")
+    for p in pictures:
+        if p["holds"] not in (None, p["type"]):
+            problems.append(f"{label}: a picture sent as {p['type']} holds {p['holds']} bytes")
+            break
+    light = sorted(p["bytes"] for p in pictures if p["bytes"] and p["bytes"] > 0 and p["type"] != CRISP)
+    crisp = sorted(p["bytes"] for p in pictures if p["bytes"] and p["bytes"] > 0 and p["type"] == CRISP)
     if not light:
         problems.append(f"{label}: no light picture was sent while the controls moved")
+    elif crisp and light[len(light) // 2] >= crisp[len(crisp) // 2]:
+        problems.append(
+            f"{label}: the pictures sent while moving weigh {light[len(light) // 2] / 1e3:.0f} KB (median), "
+            f"no lighter than the crisp ones ({crisp[len(crisp) // 2] / 1e3:.0f} KB)"
+        )
     report.summary.append(
         f"weight {label}: {len(light)} moving pictures, median {light[len(light) // 2] / 1e3 if light else 0:.0f} KB;"
-        f" {len(crisp)} at rest, median {crisp[len(crisp) // 2] / 1e3 if crisp else 0:.0f} KB;"
-        f" {len(ms)} control actions, p95 {latency_stats(ms)['p95_ms'] if ms else 0:.0f} ms"
+        f" {len(crisp)} at rest, median {crisp[len(crisp) // 2] / 1e3 if crisp else 0:.0f} KB"
     )
 
 
-def _check_demo(page, demo, label: str, shot, problems: list[str], report) -> None:
-    """A picture and a caption that fit a laptop, a screenshot to ``shot``, then every control
-    drives the picture, quickly and with light pictures."""
-    if not _picture_shown(page, demo, label, problems):
-        return
+def _check_demo(page, demo, label: str, problems: list[str], report) -> None:
+    """A picture and a caption that fit a laptop, then every control drives the picture, with
+    light pictures while moving and the crisp one at rest."""
     driver = DemoDriver(page, demo, label, problems, report)
     demo.scroll_into_view_if_needed()
     driver.settle(quiet_ms=200)
     _check_layout(demo, label, problems)
-    # The screenshot with its caption: a taller window of the same width, so nothing is cut off.
-    page.set_viewport_size({"width": VIEWPORT["width"], "height": 1400})
-    demo.scroll_into_view_if_needed()
-    page.wait_for_timeout(200)
-    demo.screenshot(path=shot)
-    page.set_viewport_size(VIEWPORT)
-    demo.scroll_into_view_if_needed()
 
     controls = demo.locator("[class*='kf-control-']")
     all_keys = {DemoDriver.key_of(controls.nth(i)) for i in range(controls.count())}
     _check_accessible(demo, label, problems)
     _check_focus_ring(page, demo, label, problems)
-    latency: Latency = {}
-    tested = _drive_sliders(demo, driver, latency)
-    tested |= _drive_buttons(demo, driver)
-    tested |= _drive_choices(demo, driver)
-    tested |= _drive_plays(demo, driver)
+    tested, _ = drive_every_control(demo, driver)
     driver.settle(quiet_ms=200)
     _check_accessible(demo, f"{label} (after its controls moved)", problems)
 
     untested = sorted(k for k in all_keys - tested if k)
     if untested:
         report.summary.append(f"note {label}: controls not driven by the suite: {', '.join(untested)}")
-    if latency:
-        _record_latency(label, latency, report)
-    _check_speed_and_weight(driver, latency, label, problems, report)
+    _check_pictures(driver, label, problems, report)
 
 
-def _check_demos(page, panel, stem: str, problems: list[str], report) -> int:
-    """Check every ``.kf-demo`` of the notebook, labelled ``<stem>/<name>`` (``-2``, ... when a
-    name repeats), with a screenshot each; returns how many there are."""
+def _shown_demos(page, panel, stem: str, problems: list[str], report) -> list[tuple[object, str]]:
+    """Every ``.kf-demo`` of the notebook, labelled ``<stem>/<name>`` (``-2``, ... when a name
+    repeats), whose picture and caption are shown: (its locator, its label)."""
     demos = panel.locator(".kf-demo")
-    seen: dict[str, int] = {}
-    for i in range(demos.count()):
+    shown = []
+    for i, label in enumerate(demo_labels(panel, stem)):
         demo = demos.nth(i)
-        name = demo.evaluate(
-            "e => (Array.from(e.classList).find(c => c.startsWith('kf-demo-')) || '').slice(8) || null"
-        )
-        if name is None:
+        if demo.evaluate("e => !Array.from(e.classList).some(c => c.startsWith('kf-demo-'))"):
             problems.append(f"demo #{i} has no kf-demo-<name> class")
-            name = f"demo{i}"
-        seen[name] = seen.get(name, 0) + 1
-        suffix = "" if seen[name] == 1 else f"-{seen[name]}"
-        label = f"{stem}/{name}{suffix}"
-        _check_demo(page, demo, label, report.artifacts / f"{stem}__{name}{suffix}.png", problems, report)
-    return demos.count()
+        if _picture_shown(page, demo, label, problems):
+            shown.append((demo, label))
+    return shown
 
 
 # --------------------------------------------------------------------------- the test
 
 
-def test_notebook_runs_and_demos_respond(browser, lab_server, report, notebook):
-    url = lab_server.url
-    context = browser.new_context(viewport=VIEWPORT)
-    page_errors: list[str] = []
+def test_notebook_runs_and_demos_respond(lab_app, next_notebook, report, notebook):
+    page = lab_app.page
+    errors_before = len(lab_app.errors)
     timings = {"start": time.monotonic()}
+    panel = None
     try:
-        shutdown_kernels(context, url)
-        page = context.new_page()
-        page.on("pageerror", lambda e: page_errors.append(str(e)))
-        panel_id = open_notebook(page, url, notebook.name, timings)
-        panel = page.locator(f"[id='{panel_id}']")
-
-        if not run_all(page, panel_id):
+        panel_id = lab_app.open(notebook.name, timings)
+        if panel_id is None:
             pytest.fail(f"{notebook.name}: Run All did not finish in {RUN_ALL_TIMEOUT_MS // 1000} s", pytrace=False)
-        timings["run all"] = time.monotonic()
+        # The next chapter opens and runs in a background tab while this one is checked.
+        following = next_notebook(notebook.name)
+        if following is not None and following not in lab_app.started:
+            lab_app.start(following, activate=False)
+        panel = page.locator(f"[id='{panel_id}']")
 
         # -- no cell complained
         cells = read_cells(page)
@@ -432,11 +355,16 @@ def test_notebook_runs_and_demos_respond(browser, lab_server, report, notebook):
         # -- every widget output really rendered as widgets
         _check_widgets_rendered(page, panel_id, panel, cells, notebook.name)
         timings["widgets"] = time.monotonic()
-        full_page_screenshot(page, panel, report.artifacts / f"{notebook.stem}.png")
-        timings["screenshot"] = time.monotonic()
+        demos = _shown_demos(page, panel, notebook.stem, problems, report)
+        # Each demo with its caption as it opens (the README's pictures come from these).
+        shots = [(demo, report.artifacts / f"{label.replace('/', '__')}.png") for demo, label in demos]
+        element_screenshots(page, shots)
+        timings["screenshots"] = time.monotonic()
 
         # -- drive every demo
-        n_demos = _check_demos(page, panel, notebook.stem, problems, report)
+        for demo, label in demos:
+            _check_demo(page, demo, label, problems, report)
+        n_demos = panel.locator(".kf-demo").count()
         timings["demos driven"] = time.monotonic()
 
         # -- the chapter's own content against WCAG 2.1 A/AA
@@ -446,11 +374,18 @@ def test_notebook_runs_and_demos_respond(browser, lab_server, report, notebook):
         timings["axe"] = time.monotonic()
         steps = list(timings.items())
         phases = ", ".join(f"{name} {b - a:.1f} s" for (_, a), (name, b) in itertools.pairwise(steps))
-        print(f"\n[browser] {notebook.name}: {n_demos} demo(s); {phases}")
+        print(f"\n[browser] {notebook.name} ({lab_app.found}): {n_demos} demo(s); {phases}")
 
+        page_errors = lab_app.errors[errors_before:]
         if page_errors:
             report.summary.append(f"note {notebook.stem}: uncaught page errors: {'; '.join(page_errors)[:500]}")
         if problems:
             pytest.fail(f"{notebook.name}:\n  " + "\n  ".join(problems), pytrace=False)
+    except BaseException:
+        # The whole notebook as the failure left it (about 5 s of rendering: only when it helps).
+        if panel is not None:
+            with contextlib.suppress(Exception):
+                full_page_screenshot(page, panel, report.artifacts / f"{notebook.stem}.png")
+        raise
     finally:
-        close_context(context, url)
+        lab_app.close(notebook.name)

@@ -28,8 +28,6 @@ import http.server
 import json
 import os
 import re
-import subprocess
-import sys
 import threading
 import urllib.parse
 from pathlib import Path
@@ -85,14 +83,10 @@ def has_math(path: Path) -> bool:
 
 
 @pytest.fixture(scope="module")
-def site(tmp_path_factory) -> Path:
-    out = tmp_path_factory.mktemp("site")
-    command = [sys.executable, str(REPO_ROOT / "tools" / "build_site.py"), "--out", str(out)]
-    command += ["--notebooks", str(notebooks_dir())]
-    result = subprocess.run(command, capture_output=True, text=True, timeout=BUILD_TIMEOUT_S, cwd=REPO_ROOT)
-    if result.returncode != 0:
-        pytest.fail(f"the site build failed:\n{result.stdout[-3000:]}\n{result.stderr[-3000:]}", pytrace=False)
-    return out
+def site(site_build) -> Path:
+    """The site, built by ``tools/build_site.py`` from the session's start (``conftest.site_build``)."""
+    assert site_build is not None, "the site build was not started with the session"
+    return site_build.wait(BUILD_TIMEOUT_S)
 
 
 @pytest.fixture(scope="module")
