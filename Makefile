@@ -43,7 +43,7 @@ app: $(STAMP)
 restore:
 	@$(PYTHON) tools/course.py restore --work '$(WORK)' --chapter '$(CH)'
 
-# The tests, two workers (a notebook's cells stay on one: they share its kernel), in passes:
+# The tests, two workers (one file at a time: a notebook's cells share its kernel), in passes:
 #  1. every test and every notebook once, the browser suite apart;
 #  2. the facts of seeded runs again (tests marked `fact` and every notebook, the `slow` ones
 #     apart: tests/facts.py): once for each numpy SIMD level below this CPU's
@@ -51,7 +51,7 @@ restore:
 #     1 +- 1e-12 (tests/rounding.py). What they state must hold in every run;
 #  3. the browser suite.
 # Each pass writes its timings to $(TIMES); the last line prints the 15 slowest tests of all.
-PYTEST   := $(BIN)/pytest -n 2 --dist loadgroup --nbval-lax --nbval-current-env --nbval-cell-timeout=120
+PYTEST   := $(BIN)/pytest -n 2 --dist loadfile --nbval-lax --nbval-current-env --nbval-cell-timeout=120
 TIMES    := .test-times
 REPEAT   := $(PYTEST) -m "fact and not slow and not browser" tests notebooks
 

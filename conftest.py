@@ -8,9 +8,7 @@ it pass in a cell whose output is not compared.
 notebook kernels (``tests/rounding.py``): a run whose stated facts change under a
 perturbation of 1e-12 states digits of this machine's rounding, not facts.
 
-Every notebook cell is marked ``fact`` (a chapter states facts of its seeded runs) and the
-cells of one notebook are kept on one worker (``xdist_group``: they share a kernel), so
-``pytest -n 2 --dist loadgroup`` spreads notebooks and tests alike.  In a run without
+Every notebook cell is marked ``fact``: a chapter states facts of its seeded runs.  In a run without
 ``--perturb``, a test that runs a seeded simulation without the ``fact`` marker fails
 (``tests/facts.py``): the repeats select by that marker.
 """
@@ -57,7 +55,6 @@ def pytest_collection_modifyitems(config, items):
     for item in items:
         if item.path.suffix == ".ipynb":
             item.add_marker(pytest.mark.fact)
-            item.add_marker(pytest.mark.xdist_group(item.path.name))
 
 
 @pytest.hookimpl(wrapper=True)

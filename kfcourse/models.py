@@ -256,11 +256,14 @@ def unicycle_control_jacobian(state, u, dt) -> np.ndarray:
 
 def _pose_offset(state, landmark, one_pose: bool = False):
     """Checked pose(s), and the landmark's offset from each, the landmark away from every pose:
-    (s, dx, dy, q), with q = dx^2 + dy^2 (numbers for one pose, columns for a stack)."""
+    (s, dx, dy, q), with q = dx^2 + dy^2 (numbers for one pose and one landmark; else one entry
+    per pose or landmark, shape (N,), (J,) or (J, N))."""
     s = _rows(state, "state", 3)
     if one_pose and s.ndim != 1:  # a Jacobian is taken at one point
         raise ValueError(f"state must have shape (3,), got {s.shape}")
-    m = v.vector(landmark, "landmark", 2)
+    m = v.vector(landmark, "landmark", 2) if one_pose else _rows(landmark, "landmark", 2)
+    if m.ndim == 2:  # J landmarks: a row of offsets for each
+        m = m.T[..., None] if s.ndim == 2 else m.T
     dx, dy = m[0] - s.T[0], m[1] - s.T[1]
     q = dx * dx + dy * dy  # q = dx^2 + dy^2
     if np.count_nonzero(q == 0.0):
@@ -274,22 +277,22 @@ def range_bearing(state, landmark) -> np.ndarray:
     .. math:: h = \begin{bmatrix} \sqrt{(m_x - x)^2 + (m_y - y)^2} \\
                   \operatorname{atan2}(m_y - y,\, m_x - x) - \theta \end{bmatrix}
 
-    Introduced in chapter 7.
+    Introduced in chapter 7; chapter 11 takes every particle to every landmark of the map at once.
 
     Parameters
     ----------
     state : array_like, shape (3,) or (N, 3)
         Pose ``[x, y, theta]``, or N poses one a row.
-    landmark : array_like, shape (2,)
-        Landmark ``[mx, my]``.
+    landmark : array_like, shape (2,) or (J, 2)
+        Landmark ``[mx, my]``, or J landmarks one a row.
 
     Returns
     -------
-    ndarray, shape (2,) or (N, 2)
-        ``[r, phi]``, bearing wrapped to (-pi, pi].
+    ndarray, shape (2,), (N, 2), (J, 2) or (J, N, 2)
+        ``[r, phi]``, bearing wrapped to (-pi, pi]; with J landmarks, row j for landmark j.
     """
     s, dx, dy, q = _pose_offset(state, landmark)
-    out = np.empty((*s.shape[:-1], 2))
+    out = np.empty((*np.shape(dx), 2))
     out[..., 0] = np.sqrt(q)  # r = sqrt(q)
     out[..., 1] = wrap_angle(np.arctan2(dy, dx) - s.T[2])  # phi = atan2(dy, dx) - theta, wrapped
     return out

@@ -40,6 +40,7 @@ UNMARKED = {
     "tests/demos/test_light_and_crisp.py": "the light picture against the crisp one of one state",
     "tests/demos/test_hallway_layout.py": "where the two text blocks stand, not what the run did",
     "tests/plots/test_density.py": "the same picture at more pixels: one run drawn twice",
+    "tests/plots/test_loop_animation.py": "the README's animation draws the demo's own frames, not the run's numbers",
     "tests/plots/test_role_styles.py": "the line style of each role in every figure, not the run's numbers",
 }
 

@@ -196,7 +196,7 @@ def pf_weight(particles, z, landmarks, Q, log_w=None, labelled: bool = True) -> 
     log_w = np.zeros(len(x)) if log_w is None else _log_weights(log_w, "log_w", len(x))
     if len(z) == 0:
         return log_w  # no reading: the weights do not change
-    h = np.stack([range_bearing(x, m) for m in landmarks])  # h_j(x): each landmark's reading, every particle: (J, N, 2)
+    h = range_bearing(x, landmarks)  # h_j(x): each landmark's reading, every particle: (J, N, 2)
     if labelled:  # reading j against its own landmark j
         nu = z[:, None, :] - h  # z_j - h_j(x): (k, N, 2)
     else:  # reading j against every landmark j' of the map

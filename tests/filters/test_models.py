@@ -125,6 +125,19 @@ def test_range_bearing_closed_form_wraps_the_bearing():
     assert kf.range_bearing([0.0, 0.0, TWO_PI + 0.5], [1.0, 1.0])[1] == pytest.approx(math.pi / 4 - 0.5, abs=1e-14)
 
 
+def test_range_bearing_to_many_landmarks_is_one_row_per_landmark():
+    # chapter 11 takes every particle to every landmark at once: row j is landmark j's reading, to the last bit
+    poses = np.array([[0.0, 0.0, 0.3], [1.0, -2.0, -3.0], [4.0, 1.0, 2.0]])
+    marks = np.array([[3.0, 4.0], [-1.0, 0.5], [0.0, -6.0], [5.0, 5.0]])
+    each = np.stack([kf.range_bearing(poses, m) for m in marks])
+    assert np.array_equal(kf.range_bearing(poses, marks), each) and each.shape == (4, 3, 2)
+    assert np.array_equal(kf.range_bearing(poses[1], marks), each[:, 1])
+    with pytest.raises(ValueError, match="landmark"):
+        kf.range_bearing(poses, np.ones((2, 2, 2)))
+    with pytest.raises(ValueError, match="landmark must not sit"):
+        kf.range_bearing(poses, [[3.0, 4.0], [1.0, -2.0]])  # the second sits on the second pose
+
+
 # ================================================================ properties
 @FAST
 @given(dt=reals(1e-3, 5.0), dim=st.integers(1, 3), k=st.integers(1, 6))

@@ -16,7 +16,9 @@ import pytest
 import kfcourse as kf
 from kfcourse.sim.localization import BEARING_STD, RANGE_STD
 
-pytestmark = pytest.mark.fact  # states facts of seeded runs: repeated under other rounding (tests/facts.py)
+# Facts of seeded runs that chapter 11 states and checks too, and every repeat runs the chapter: here they run
+# once (slow: 20 laps without labels each).
+pytestmark = [pytest.mark.fact, pytest.mark.slow]
 
 SEEDS = range(20)
 START = np.zeros(3)  # the true start of chapter 10's lap

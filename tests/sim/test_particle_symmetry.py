@@ -54,7 +54,9 @@ import pytest
 
 import kfcourse as kf
 
-pytestmark = pytest.mark.fact  # states facts of seeded runs: repeated under other rounding (tests/facts.py)
+# Facts of seeded runs that chapter 11 states and checks too, and every repeat runs the chapter: here they run
+# once (slow: 20 laps without labels each).
+pytestmark = [pytest.mark.fact, pytest.mark.slow]
 
 SEEDS = range(20)
 C = np.array([0.0, 2.5])  # m: the map's centre of symmetry
