@@ -4,6 +4,8 @@
 # and for students:
 #   make app CH=03       one chapter as an app (Voila: prose and live demos, no code)
 #   make restore CH=03   put chapter 3's original back into my-notebooks/ (no CH: every chapter)
+# and for developers:
+#   make check           lint, the tests but the slow and browser ones, and the notebooks changed
 # and for instructors:
 #   make badges REPO=me/kfcourse REF=v1.0   every Binder link to a fork and a tag
 PYTHON   ?= python3
@@ -91,6 +93,7 @@ bench: $(STAMP)
 	$(BIN)/python benchmarks/bench_pictures.py
 	$(BIN)/python benchmarks/bench_batch.py
 	$(BIN)/python benchmarks/bench_check.py
+	$(BIN)/python benchmarks/bench_chapters.py
 	$(BIN)/python -m benchmarks.bench_link
 	$(BIN)/python -m benchmarks.bench_browser
 

@@ -21,10 +21,17 @@ test runs, so the shared runs are perturbed too.
 from __future__ import annotations
 
 import functools
+import re
+import shutil
+import subprocess
+import sys
+import tempfile
+from pathlib import Path
 
 import numpy as np
 
 MARKER = "fact"
+ROOT = Path(__file__).resolve().parents[1]
 
 # Tests that make seeded generators but state no fact of a seeded run that rounding could move,
 # by node id (a file, or a file and a test): the reason each needs no repeat.
@@ -114,3 +121,22 @@ def shared(make, *args, **kwargs):
     like a generator made, so a test that takes a shared run must be marked ``fact``."""
     _made[0] += 1
     return _build(make, args, tuple(sorted(kwargs.items())))
+
+
+def planted(source: str, *options: str) -> tuple[dict[str, str], str]:
+    """Run pytest, with ``options``, on ``source`` written as a test file under tests/ (so the root
+    conftest governs it), in a fresh process: each test's verdict by name, and what pytest printed."""
+    folder = Path(tempfile.mkdtemp(prefix=".probe-", dir=ROOT / "tests"))
+    try:
+        (folder / "test_planted.py").write_text(source)
+        result = subprocess.run(
+            [sys.executable, "-m", "pytest", "-q", "-rA", "-p", "no:cacheprovider", *options, str(folder)],
+            cwd=ROOT,
+            capture_output=True,
+            text=True,
+            timeout=300,
+        )
+    finally:
+        shutil.rmtree(folder)
+    found = re.findall(r"^(PASSED|FAILED) \S*::(\w+)", result.stdout, re.M)
+    return {name: verdict for verdict, name in found}, result.stdout

@@ -1,21 +1,13 @@
 """The ``fact`` marker's guard finds a test that runs a seeded simulation unmarked (``tests/facts.py``).
 
-Each test here writes a small test file under ``tests/`` (so the root conftest governs it),
-runs pytest on it in a fresh process as ``make test``'s first pass runs, and reads the verdicts.
+Each test here plants a small test file under ``tests/`` and runs pytest on it in a fresh process
+(``tests.facts.planted``), as ``make test``'s passes run, and reads the verdicts.
 """
 
 from __future__ import annotations
 
-import re
-import shutil
-import subprocess
-import sys
-import tempfile
-from pathlib import Path
-
+from tests.facts import planted
 from tests.simd_levels import repeats
-
-ROOT = Path(__file__).resolve().parents[1]
 
 PLANTED = """
 import pytest
@@ -61,26 +53,8 @@ def test_unmarked_without_a_run():
 """
 
 
-def verdicts(source: str, *options: str) -> tuple[dict[str, str], str]:
-    """Run pytest on ``source`` as a test file under tests/; each test's verdict, and the output."""
-    folder = Path(tempfile.mkdtemp(prefix=".probe-", dir=ROOT / "tests"))
-    try:
-        (folder / "test_planted.py").write_text(source)
-        result = subprocess.run(
-            [sys.executable, "-m", "pytest", "-q", "-rA", "-p", "no:cacheprovider", *options, str(folder)],
-            cwd=ROOT,
-            capture_output=True,
-            text=True,
-            timeout=300,
-        )
-    finally:
-        shutil.rmtree(folder)
-    found = re.findall(r"^(PASSED|FAILED) \S*::(\w+)", result.stdout, re.M)
-    return {name: verdict for verdict, name in found}, result.stdout
-
-
 def test_the_guard_fails_an_unmarked_test_that_runs_a_seeded_simulation():
-    outcome, output = verdicts(PLANTED)
+    outcome, output = planted(PLANTED)
     assert outcome == {
         "test_unmarked_run": "FAILED",
         "test_marked_run": "PASSED",
@@ -94,7 +68,7 @@ def test_the_guard_fails_an_unmarked_test_that_runs_a_seeded_simulation():
 
 
 def test_the_repeats_select_only_the_marked_tests():
-    outcome, output = verdicts(PLANTED, "-m", "fact", "--perturb=1e-12")
+    outcome, output = planted(PLANTED, "-m", "fact", "--perturb=1e-12")
     assert set(outcome) == {
         "test_marked_run",
         "test_marked_first_user_of_a_seeded_fixture",

@@ -25,6 +25,7 @@ import pytest
 from matplotlib.text import Text
 
 import kfcourse as kf
+from tests.facts import planted
 from tests.rounding import perturbed_default_rng
 
 ROOT = Path(__file__).resolve().parents[1]
@@ -99,25 +100,10 @@ def test_fact():  # what chapter 7 states of the same run
 
 def test_a_perturbed_repeat_catches_a_planted_chaotic_fact():
     final = printed_here("print(f'{kf.sim.run_ekf(flipped=True, seed=0).final_error:.6f}', end='')")
-    folder = Path(tempfile.mkdtemp(prefix=".probe-", dir=ROOT / "tests"))  # under the root conftest
-    try:
-        (folder / "test_planted.py").write_text(PLANTED_FACTS.format(final=final))
-        command = ["pytest", "-q", "-rA", "-p", "no:cacheprovider", "-m", "fact"]
-        results = [
-            subprocess.run(
-                [sys.executable, "-m", *command, *perturb, str(folder)],
-                cwd=ROOT,
-                capture_output=True,
-                text=True,
-                timeout=300,
-            ).stdout
-            for perturb in ([], ["--perturb=1e-12"])
-        ]
-    finally:
-        shutil.rmtree(folder)
-    plain, perturbed = ({name: v for v, name in re.findall(r"^(PASSED|FAILED) \S*::(\w+)", r, re.M)} for r in results)
-    assert plain == {"test_chaotic_digits": "PASSED", "test_fact": "PASSED"}, results[0][-3000:]
-    assert perturbed == {"test_chaotic_digits": "FAILED", "test_fact": "PASSED"}, results[1][-3000:]
+    source = PLANTED_FACTS.format(final=final)
+    (plain, said), (perturbed, said_perturbed) = (planted(source, "-m", "fact", *p) for p in ([], ["--perturb=1e-12"]))
+    assert plain == {"test_chaotic_digits": "PASSED", "test_fact": "PASSED"}, said[-3000:]
+    assert perturbed == {"test_chaotic_digits": "FAILED", "test_fact": "PASSED"}, said_perturbed[-3000:]
 
 
 def texts(fig) -> list[str]:
