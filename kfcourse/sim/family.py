@@ -193,7 +193,7 @@ def family_table(seeds=range(20), particle_counts=(200, 2000)) -> FamilyTable:
     and the record left out), timed over the first seed's normal lap, the fastest of
     :data:`TIMINGS`; it is a figure of this machine, not a property of the filter.
 
-    Introduced in chapter 11.  Twenty seeds and two particle counts take about 35 s on a 2-core machine.
+    Introduced in chapter 11.  Twenty seeds and two particle counts take about 25 s on a 2-core machine.
 
     Parameters
     ----------
