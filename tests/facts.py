@@ -1,4 +1,4 @@
-"""Which tests state facts of seeded runs: the ``fact`` marker, its guard, and the runs tests share.
+"""Which tests state facts of seeded runs: the ``fact`` marker, its guard, and a runner for planted tests.
 
 A test marked ``fact`` states something about a run built on seeded random draws (a count, a
 bound, a verdict).  ``make test`` runs every such test, and every notebook, again under
@@ -8,14 +8,9 @@ repeat.  The repeats select by the marker (``-m fact``), not by folder.
 
 **The guard.** In a run without ``--perturb``, every test that makes a seeded generator
 (``np.random.default_rng``, which every simulation, demo model and particle filter of the
-course calls) or takes a shared run from :func:`shared` must be marked ``fact`` or listed in
+course calls), or uses a fixture that did, must be marked ``fact`` or listed in
 :data:`UNMARKED` with the reason it needs no repeat; otherwise the test fails, naming the
 marker.  So a new test that states a seeded run's number cannot leave the repeats unseen.
-
-**Shared runs.** :func:`shared` builds a run once per test process and hands the same frozen
-record to every test that asks for it with the same arguments (records are immutable: their
-arrays are read-only).  Under ``--perturb`` the process's generator is perturbed before any
-test runs, so the shared runs are perturbed too.
 """
 
 from __future__ import annotations
@@ -51,7 +46,7 @@ UNMARKED = {
     "tests/plots/test_role_styles.py": "the line style of each role in every figure, not the run's numbers",
 }
 
-_made = [0]  # seeded generators made, and shared runs handed out, in this process
+_made = [0]  # seeded generators made in this process
 seeded_fixtures: set = set()  # the fixture definitions whose set-up made a seeded generator
 
 
@@ -72,7 +67,7 @@ def install() -> None:
 
 
 def made() -> int:
-    """How many seeded generators were made and shared runs handed out so far."""
+    """How many seeded generators were made so far."""
     return _made[0]
 
 
@@ -101,26 +96,12 @@ def complaint(item) -> str | None:
     marked = item.get_closest_marker(MARKER) is not None
     if seeded(item) and not marked and listed(item.nodeid) is None:
         return (
-            f"{item.nodeid} runs a seeded simulation (it made a seeded generator, took a shared run or uses a fixture "
+            f"{item.nodeid} runs a seeded simulation (it made a seeded generator or uses a fixture "
             f"that did) but is not marked '{MARKER}': mark it (@pytest.mark.{MARKER}, or pytestmark in its module) "
             "so that make test repeats it under other rounding, or list it in tests/facts.py UNMARKED with the "
             "reason it needs no repeat"
         )
     return None
-
-
-@functools.cache
-def _build(make, args, kwargs):
-    return make(*args, **dict(kwargs))
-
-
-def shared(make, *args, **kwargs):
-    """``make(*args, **kwargs)`` built once per test process: the same frozen run for every test that asks.
-
-    Only for functions that return immutable records (``kf.sim``'s runs).  Counted by the guard
-    like a generator made, so a test that takes a shared run must be marked ``fact``."""
-    _made[0] += 1
-    return _build(make, args, tuple(sorted(kwargs.items())))
 
 
 def planted(source: str, *options: str) -> tuple[dict[str, str], str]:

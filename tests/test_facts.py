@@ -13,7 +13,6 @@ PLANTED = """
 import pytest
 
 import kfcourse as kf
-from tests import facts
 
 
 def test_unmarked_run():
@@ -23,10 +22,6 @@ def test_unmarked_run():
 @pytest.mark.fact
 def test_marked_run():
     assert kf.sim.simulate_walk(seed=0).truth.size > 0
-
-
-def test_unmarked_shared_run():
-    assert facts.shared(kf.sim.simulate_walk, seed=0).truth.size > 0
 
 
 @pytest.fixture(scope="module")
@@ -58,7 +53,6 @@ def test_the_guard_fails_an_unmarked_test_that_runs_a_seeded_simulation():
     assert outcome == {
         "test_unmarked_run": "FAILED",
         "test_marked_run": "PASSED",
-        "test_unmarked_shared_run": "FAILED",
         "test_marked_first_user_of_a_seeded_fixture": "PASSED",
         "test_unmarked_later_user_of_a_seeded_fixture": "FAILED",
         "test_marked_without_a_run": "PASSED",
