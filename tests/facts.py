@@ -104,12 +104,13 @@ def complaint(item) -> str | None:
     return None
 
 
-def planted(source: str, *options: str) -> tuple[dict[str, str], str]:
-    """Run pytest, with ``options``, on ``source`` written as a test file under tests/ (so the root
-    conftest governs it), in a fresh process: each test's verdict by name, and what pytest printed."""
+def run_planted(files: dict[str, str], *options: str) -> str:
+    """Run pytest, with ``options``, on ``files`` (name: text) written to a folder under tests/ (so the
+    root conftest governs them), in a fresh process; what pytest printed (``-rA``: every verdict)."""
     folder = Path(tempfile.mkdtemp(prefix=".probe-", dir=ROOT / "tests"))
     try:
-        (folder / "test_planted.py").write_text(source)
+        for name, text in files.items():
+            (folder / name).write_text(text)
         result = subprocess.run(
             [sys.executable, "-m", "pytest", "-q", "-rA", "-p", "no:cacheprovider", *options, str(folder)],
             cwd=ROOT,
@@ -119,5 +120,11 @@ def planted(source: str, *options: str) -> tuple[dict[str, str], str]:
         )
     finally:
         shutil.rmtree(folder)
-    found = re.findall(r"^(PASSED|FAILED) \S*::(\w+)", result.stdout, re.M)
-    return {name: verdict for verdict, name in found}, result.stdout
+    return result.stdout
+
+
+def planted(source: str, *options: str) -> tuple[dict[str, str], str]:
+    """:func:`run_planted` on ``source`` as one test file: each test's verdict by name, and what pytest printed."""
+    printed = run_planted({"test_planted.py": source}, *options)
+    found = re.findall(r"^(PASSED|FAILED) \S*::(\w+)", printed, re.M)
+    return {name: verdict for verdict, name in found}, printed

@@ -3,14 +3,12 @@
 from __future__ import annotations
 
 import re
-import shutil
-import subprocess
-import sys
-import tempfile
 from pathlib import Path
 
 import nbformat
 import pytest
+
+from tests.facts import run_planted
 
 ROOT = Path(__file__).resolve().parents[1]
 
@@ -38,18 +36,12 @@ def notebook(cells) -> nbformat.NotebookNode:
 def nbval_run() -> tuple[dict[str, list[str]], str]:
     """Run nbval once, as `make test` does, on one notebook per case: each case's cell outcomes,
     and what nbval printed."""
-    folder = Path(tempfile.mkdtemp(prefix=".probe-", dir=ROOT / "tests"))  # under the root conftest
-    try:
-        for case, (cells, _) in CASES.items():
-            nbformat.write(notebook(cells), folder / f"{case}.ipynb")
-        command = ["pytest", "--nbval-lax", "--nbval-current-env", "-q", "-rA", "-p", "no:cacheprovider", str(folder)]
-        result = subprocess.run([sys.executable, "-m", *command], cwd=ROOT, capture_output=True, text=True, timeout=120)
-    finally:
-        shutil.rmtree(folder)
+    notebooks = {f"{case}.ipynb": nbformat.writes(notebook(cells)) for case, (cells, _) in CASES.items()}
+    printed = run_planted(notebooks, "--nbval-lax", "--nbval-current-env")
     found: dict[str, list[str]] = {}
-    for outcome, case in re.findall(r"^(PASSED|FAILED|ERROR) \S*/([\w-]+)\.ipynb::Cell \d+", result.stdout, re.M):
+    for outcome, case in re.findall(r"^(PASSED|FAILED|ERROR) \S*/([\w-]+)\.ipynb::Cell \d+", printed, re.M):
         found.setdefault(case, []).append(outcome)
-    return found, result.stdout
+    return found, printed
 
 
 @pytest.mark.parametrize("case", CASES)

@@ -12,10 +12,8 @@ from __future__ import annotations
 
 import os
 import re
-import shutil
 import subprocess
 import sys
-import tempfile
 from pathlib import Path
 
 import ipywidgets as widgets
@@ -25,7 +23,7 @@ import pytest
 from matplotlib.text import Text
 
 import kfcourse as kf
-from tests.facts import planted
+from tests.facts import planted, run_planted
 from tests.rounding import perturbed_default_rng
 
 ROOT = Path(__file__).resolve().parents[1]
@@ -61,23 +59,14 @@ def probe(cell: str) -> nbformat.NotebookNode:
 
 
 def test_a_perturbed_notebook_run_catches_a_chaotic_digit():
-    folder = Path(tempfile.mkdtemp(prefix=".probe-", dir=ROOT / "tests"))  # under the root conftest
-    try:
-        nbformat.write(probe(CHAOTIC_CELL), folder / "chaotic.ipynb")
-        nbformat.write(probe(FACT_CELL), folder / "facts.ipynb")
-        command = ["pytest", "--nbval-lax", "--nbval-current-env", "-q", "-rA", "-p", "no:cacheprovider"]
-        result = subprocess.run(
-            [sys.executable, "-m", *command, "--perturb=1e-12", str(folder)],
-            cwd=ROOT,
-            capture_output=True,
-            text=True,
-            timeout=300,
-        )
-    finally:
-        shutil.rmtree(folder)
-    found = re.findall(r"^(PASSED|FAILED) \S*/(\w+)\.ipynb::Cell 1", result.stdout, re.M)
+    notebooks = {
+        f"{name}.ipynb": nbformat.writes(probe(cell))
+        for name, cell in (("chaotic", CHAOTIC_CELL), ("facts", FACT_CELL))
+    }
+    printed = run_planted(notebooks, "--nbval-lax", "--nbval-current-env", "--perturb=1e-12")
+    found = re.findall(r"^(PASSED|FAILED) \S*/(\w+)\.ipynb::Cell 1", printed, re.M)
     outcome = {name: verdict for verdict, name in found}
-    assert outcome == {"chaotic": "FAILED", "facts": "PASSED"}, result.stdout[-3000:]
+    assert outcome == {"chaotic": "FAILED", "facts": "PASSED"}, printed[-3000:]
 
 
 PLANTED_FACTS = """
