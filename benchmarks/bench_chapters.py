@@ -20,23 +20,17 @@ import time
 from pathlib import Path
 
 import nbformat
-import zmq
 from nbclient import NotebookClient
-from traitlets.config import Config
+
+if __package__ in (None, ""):  # run as a script: the repository's root on the path, as with -m
+    sys.path.insert(0, str(Path(__file__).resolve().parents[1]))
+
+from tools.kernels import kernel_config
 
 ROOT = Path(__file__).resolve().parent.parent
 CHAPTER_TARGET = 60.0  # s, top to bottom
 CELL_TARGET = 10.0  # s, any one cell
 SHOWN = 1.0  # s, --cells prints the cells that take this long or longer
-
-
-def kernel_config() -> Config:
-    """The kernel talks to the benchmark over CurveZMQ-encrypted transport where it supports it, as under
-    ``make lab`` (``binder/jupyter-config``), or over IPC where pyzmq lacks CurveZMQ: never over plain
-    TCP, which ipykernel warns about at every start."""
-    if zmq.has("curve"):
-        return Config({"KernelManager": {"transport_encryption": "auto"}})
-    return Config({"KernelManager": {"transport": "ipc"}})
 
 
 def cell_times(path: Path) -> list[tuple[int, float]]:

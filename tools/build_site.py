@@ -49,13 +49,15 @@ from pathlib import Path
 
 import jinja2
 import nbformat
-import zmq
 from nbclient import NotebookClient
 from nbconvert import HTMLExporter
 from PIL import Image
-from traitlets.config import Config
+
+if __package__ in (None, ""):  # run as a script: the repository's root on the path, as with -m
+    sys.path.insert(0, str(Path(__file__).resolve().parents[1]))
 
 from kfcourse.plots.palette import ESTIMATE_TEXT
+from tools.kernels import kernel_config
 
 ROOT = Path(__file__).resolve().parents[1]
 WIDGET_VIEW = "application/vnd.jupyter.widget-view+json"
@@ -250,16 +252,6 @@ def mathjax_folder() -> Path:
         return Path(str(resources.files("jupyter_server_mathjax") / "static"))
     except ModuleNotFoundError:
         sys.exit("tools/build_site.py needs jupyter-server-mathjax: pip install -r requirements-dev.txt")
-
-
-def kernel_config() -> Config:
-    """Kernels that talk to the build over CurveZMQ-encrypted transport where the kernel supports it
-    (``KernelManager.transport_encryption = "auto"``, as ``make lab`` and ``make app`` start them:
-    ``binder/jupyter-config``), or over IPC (Unix sockets) where pyzmq lacks CurveZMQ; never over
-    plain TCP, which ipykernel warns about on every start."""
-    if zmq.has("curve"):
-        return Config({"KernelManager": {"transport_encryption": "auto"}})
-    return Config({"KernelManager": {"transport": "ipc"}})
 
 
 class SiteClient(NotebookClient):

@@ -16,6 +16,11 @@ from pathlib import Path
 import nbformat
 from nbclient import NotebookClient
 
+if __package__ in (None, ""):  # run as a script: the repository's root on the path, as with -m
+    sys.path.insert(0, str(Path(__file__).resolve().parents[1]))
+
+from tools.kernels import kernel_config
+
 MARK = "# NBVAL_CHECK_OUTPUT"
 
 
@@ -35,7 +40,8 @@ def text_outputs(outputs: list) -> list:
 
 def store(path: Path) -> None:
     nb = nbformat.read(path, as_version=4)
-    NotebookClient(nb, timeout=300, kernel_name="python3", resources={"metadata": {"path": str(path.parent)}}).execute()
+    resources = {"metadata": {"path": str(path.parent)}}
+    NotebookClient(nb, timeout=300, kernel_name="python3", resources=resources, config=kernel_config()).execute()
     for cell in nb.cells:
         cell.metadata.pop("execution", None)
         if cell.cell_type != "code":

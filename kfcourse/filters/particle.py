@@ -197,17 +197,18 @@ def pf_weight(particles, z, landmarks, Q, log_w=None, labelled: bool = True) -> 
     if len(z) == 0:
         return log_w  # no reading: the weights do not change
     h = range_bearing(x, landmarks)  # h_j(x): each landmark's reading, every particle: (J, N, 2)
-    if labelled:  # reading j against its own landmark j
-        nu = z[:, None, :] - h  # z_j - h_j(x): (k, N, 2)
-    else:  # reading j against every landmark j' of the map
-        nu = z[:, None, None, :] - h  # z_j - h_j'(x): (k, J, N, 2)
-    dr, dphi = nu[..., 0], wrap_angle(nu[..., 1])  # the range and the bearing (wrapped) of nu
+    # reading j against its own landmark j (labelled: (k, N)), or against every landmark j' of the map ((k, J, N))
+    z = z[:, None, :] if labelled else z[:, None, None, :]
+    dr = z[..., 0] - h[..., 0]  # the range of nu = z_j - h_j(x)
+    dphi = wrap_angle(z[..., 1] - h[..., 1])  # and its bearing, wrapped
     d2 = Q_inv[0, 0] * dr**2 + 2.0 * Q_inv[0, 1] * dr * dphi + Q_inv[1, 1] * dphi**2  # nu^T Q^-1 nu, Q^-1 symmetric
     log_p = -0.5 * (d2 + logdet)  # log N(nu; 0, Q) = -(nu^T Q^-1 nu + log det 2 pi Q) / 2
     if labelled:
         return log_w + log_p.sum(axis=0)  # (3) add every reading's log N(nu_j; 0, Q)
     top = log_p.max(axis=1)  # the likeliest landmark j' for each reading and particle: (k, N)
-    mix = top + np.log(np.exp(log_p - top[:, None]).sum(axis=1) / len(landmarks))  # log (1/J) sum_j' N(nu_jj'; 0, Q)
+    # exp floored at e^-700: a term that small adds nothing to a sum >= 1, and exp is slow where it underflows to 0
+    terms = np.exp(np.maximum(log_p - top[:, None], -700.0))  # N(nu_jj'; 0, Q) / N(nu_j,top; 0, Q) <= 1
+    mix = top + np.log(terms.sum(axis=1) / len(landmarks))  # log (1/J) sum_j' N(nu_jj'; 0, Q)
     return log_w + mix.sum(axis=0)  # (3') add every reading's log-mixture, by the log-sum-exp of (4)
 
 

@@ -6,6 +6,8 @@ or two with the draws, and the cost per step is a figure of the machine, never a
 
 from __future__ import annotations
 
+import dataclasses
+
 import numpy as np
 import pytest
 
@@ -90,6 +92,31 @@ def test_a_small_table_and_its_seeds():
     assert small.scores["EKF"].error[1] == pytest.approx(ekf.error.mean())  # the same lap as chapter 10's
 
 
+def test_laps_already_run_are_taken_and_no_other(monkeypatch):
+    laps = []
+    monkeypatch.setattr(kf.sim.family, "particle_loop", lambda *a, **k: laps.append(a) or kf.sim.particle_loop(*a, **k))
+    fresh = kf.sim.family_table([3, 5], particle_counts=[50])
+    run_all = len(laps)  # 2 seeds x 3 laps, and the timed laps
+    made = [
+        kf.sim.particle_loop(3, n_particles=50, global_start=True),
+        kf.sim.particle_loop(5, n_particles=50, kidnap=60, injection=0.05),
+    ]
+    decoys = [
+        dataclasses.replace(made[0], seed=5),  # the right settings, another seed's world
+        kf.sim.particle_loop(3, n_particles=50, global_start=True, sensor_noise=2.0),
+        kf.sim.particle_loop(5, n_particles=50, kidnap=60, injection=0.2),
+        kf.sim.particle_loop(3, n_particles=40),
+        kf.sim.particle_loop(3, n_particles=50, landmarks=kf.sim.DEFAULT_LANDMARKS[:-1]),
+    ]
+    for runs, taken in ((made, 2), (decoys, 0)):
+        laps.clear()
+        table = kf.sim.family_table([3, 5], particle_counts=[50], runs=runs)
+        assert len(laps) == run_all - taken
+        for name, score in fresh.scores.items():
+            for part in ("error", "inside", "found", "localized"):
+                np.testing.assert_array_equal(getattr(table.scores[name], part), getattr(score, part))
+
+
 @pytest.mark.parametrize(
     ("settings", "name"),
     [
@@ -102,6 +129,8 @@ def test_a_small_table_and_its_seeds():
         ({"particle_counts": (20_000,)}, "particle_counts"),
         ({"particle_counts": (50, 50)}, "particle_counts"),
         ({"particle_counts": (2.5,)}, "particle_counts"),
+        ({"runs": [kf.sim.landmark_loop(0)]}, "runs"),
+        ({"runs": 3}, "runs"),
     ],
 )
 def test_bad_input_names_the_argument(settings, name):
