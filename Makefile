@@ -5,7 +5,7 @@
 #   make app CH=03       one chapter as an app (Voila: prose and live demos, no code)
 #   make restore CH=03   put chapter 3's original back into my-notebooks/ (no CH: every chapter)
 # and for developers:
-#   make check           lint, the tests but the slow and browser ones, and the notebooks changed
+#   make check           lint, the unit tests, and the notebooks changed
 # and for instructors:
 #   make badges REPO=me/kfcourse REF=v1.0   every Binder link to a fork and a tag
 PYTHON   ?= python3
@@ -69,12 +69,13 @@ test: $(STAMP) lint $(AXE)
 	$(BIN)/pytest -m browser --junitxml=$(TIMES)/4-browser.xml tests/browser
 	@$(BIN)/python -m tests.slowest $(TIMES)
 
-# For every day: lint, every test but the slow and the browser ones, and the notebooks that differ
-# from git's HEAD (or CH=03 08: those chapters), in at most a few minutes. make test before a push.
+# For every day: lint, the unit tests (not the facts of seeded runs, the slow or the browser ones: tests/facts.py),
+# and the notebooks that differ from git's HEAD (or CH="03 08": those chapters), in a few minutes. make test before a push.
 CHANGED   = $(wildcard $(if $(strip $(CH)),$(foreach c,$(CH),notebooks/$(c)_*.ipynb),\
             $(shell { git diff --name-only HEAD; git ls-files --others --exclude-standard; } -- notebooks 2>/dev/null)))
 check: $(STAMP) lint
-	$(PYTEST) -m "not slow and not browser" tests $(CHANGED)
+	$(PYTEST) -m "not fact and not slow and not browser" tests
+	$(if $(strip $(CHANGED)),$(PYTEST) $(CHANGED))
 
 # axe-core, the accessibility checker of the browser tests, at the version package-lock.json pins:
 # installed again whenever the lock file is newer than it.
