@@ -67,7 +67,7 @@ def test_prompt_2_the_lessons_recipe_through_the_controls():
     demo.controls["frame"].value = 90
     demo.controls["dropout"].value = False
     assert m.blind == BLIND
-    closer, ok = [], 0
+    closer, ok, home, late, lost = [], 0, [], [], []
     for seed in SEEDS:
         if seed:
             demo.controls["new"].click()
@@ -78,19 +78,27 @@ def test_prompt_2_the_lessons_recipe_through_the_controls():
         before, after = np.linalg.norm(run.truth[90, :2] - run.mu_bar[90, :2]), run.error[90]
         shrink = run.area[90] / bar_area(run, 90)
         assert 340 <= grow <= 440  # "about 375 times ...; over 20 runs 340 to 440 times"
-        assert 0.35 <= wander < 3.0  # "0.4 to 3 m"
+        assert 1 / 3 <= wander < 3.0  # "a third of a metre to 3 m"
         assert run.used[90].sum() == 1  # a single reading
         assert 0.015 <= shrink <= 0.07  # "to 2-7 % of the prediction's"
         assert "uses 1 reading (sight back: the nearest landmark only)" in readout(demo)
         closer.append(after < before)
         if not closer[-1]:
-            assert before < 0.25 and after - before < 0.15  # "already within 25 cm ... a few centimetres"
+            assert seed == 11 and before < 0.25 and 0.05 < after - before < 0.15  # "(run 11) ... about 10 cm"
+        scan = run.used[91].sum() + run.rejected[91].sum()
+        if run.error[91] < 0.2:  # "15 of 20 are within 20 cm at step 91"
+            home.append(seed)
+        elif run.rejected[91].sum() == 1 and scan == 2 and run.error[-1] < 0.1:  # "In three more ... home later"
+            late.append(seed)
+        elif run.rejected[91:].sum() >= 50 and run.error[91:].min() > 1.5 and run.error[91:].max() < 4.5:
+            lost.append(seed)  # "(runs 5 and 8) ... nearly every reading ... about 2 to 4 m off"
         ok += grow >= 10 and wander >= 0.3 and shrink <= 0.5 and after < before  # the issue's recipe
         if seed == 0:
             assert round(grow, -1) in (370, 380) and round(wander, 1) == 2.1 and round(shrink, 2) == 0.07
             assert (round(before, 2), round(after, 2)) == (1.87, 0.31)
             assert round(run.area[19], 4) == 0.008
-    assert sum(closer) >= 18 and ok >= 16  # "in 19 runs of 20 it lands closer"
+    assert sum(closer) == 19 and ok >= 16  # "in 19 runs of 20 it lands closer"
+    assert (len(home), len(late), lost) == (15, 3, [5, 8])
 
 
 def test_prompt_2_the_lessons_words_literally():
@@ -98,7 +106,7 @@ def test_prompt_2_the_lessons_words_literally():
     for m in models(sensor_noise=10.0):
         blind(m, 40, 70)
         run = m.run
-        assert 3.2 <= bar_area(run, 70) / run.area[39] <= 3.6  # "only about 3.4 times"
+        assert 3.1 <= run.area[69] / run.area[39] <= 3.5  # "only a little over three times while blind"
         assert 0.92 <= run.area[70] / bar_area(run, 70) <= 0.95  # "trims it by about 6 %"
 
 
@@ -110,7 +118,7 @@ def test_prompt_3_junk_odometry_one_reading_cannot_bring_it_home():
     tenfold = 0
     for run in runs:
         assert bar_area(run, 90) / run.area[19] > 700  # "over 700 times"
-        assert 0.7 <= run.error[89] < 9.5  # "between 0.7 and 9 m off"
+        assert 0.7 <= run.error[89] < 10.0  # "between 0.7 and 10 m off"
         tenfold += run.area[90] / bar_area(run, 90) <= 0.1
     assert tenfold == 19 and sum(run.used[90].sum() == 0 for run in runs) == 1  # "in the other the gate rejects it"
     assert sum(run.error[90] > 0.5 for run in runs) == 19  # "in 19 runs of 20 still over half a metre off"
@@ -170,3 +178,13 @@ def test_prompt_6_a_timid_r_shows_when_blind():
         blind(timid)
         blind(honest)
         assert timid.run.area[89] / honest.run.area[89] > 90  # "over 90 times the honest filter's"
+
+
+@pytest.mark.slow  # 200 laps: its fact holds for any rounding by a wide margin, and the band is a constant
+def test_the_honesty_band_takes_in_all_but_one_of_200_honest_laps():
+    """ "over 200 laps of an honest filter ... between 0.97 and 3.8, and 1 to 4 takes in all but one of them"."""
+    low, high = kf.sim.localization.HONEST_NEES
+    means = np.array([LoopModel(seed).run.nees.mean() for seed in range(200)])
+    assert (low, high) == (1.0, 4.0)
+    assert 0.95 <= means.min() < low and 3.7 <= means.max() < high
+    assert ((means >= low) & (means <= high)).sum() == 199
