@@ -32,7 +32,7 @@ __all__ = [
 def wrap_angle(a):
     r"""Wrap an angle (or array of angles) into :math:`(-\pi, \pi]`.
 
-    Introduced in chapter 8 (bearing innovations must be wrapped).
+    Introduced in chapter 7 (bearing innovations must be wrapped).
 
     Parameters
     ----------
@@ -227,7 +227,7 @@ def unicycle_control_jacobian(state, u, dt) -> np.ndarray:
                   0 & \Delta t \end{bmatrix},
               \qquad s' = \frac{\cos h - s}{h} \to -\frac{h}{3} \text{ as } h \to 0
 
-    It carries odometry noise into the pose: :math:`R = W M W^\top`.  Introduced in chapter 10.
+    It carries odometry noise into the pose: :math:`R = W M W^\top`.  Introduced in chapter 8.
 
     Parameters
     ----------

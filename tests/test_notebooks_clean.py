@@ -114,3 +114,14 @@ def test_no_code_cell_of_a_chapter_is_over_15_lines(path):
             first = next((line for line in lines if line != MARK), "")
             too_long.append(f"cell {index} ({len(lines)} lines): {first!r}")
     assert not too_long, f"{path.name}: code cells over {MAX_CODE_LINES} lines:\n" + "\n".join(too_long)
+
+
+def test_every_chapter_links_the_chapters_before_and_after_it_at_the_top():
+    chapters = [path for path in NOTEBOOKS if path.name not in EXTRA]
+    for i, path in enumerate(chapters):
+        top = "".join(cells(path)[1][1]["source"])  # the title cell, under the Binder badges
+        neighbours = {"Previous": chapters[i - 1] if i else None, "Next": (chapters[i + 1 :] or [None])[0]}
+        for word, other in neighbours.items():
+            if other is not None:
+                link = f"{word}: [Chapter {int(other.name[:2])} ·"
+                assert link in top and f"]({other.name})" in top, f"{path.name}: no {link} ...]({other.name})"

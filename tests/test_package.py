@@ -149,3 +149,36 @@ def test_public_function_docstring(qualname):
     doc = inspect.getdoc(PUBLIC[qualname]) or ""
     assert re.search(r"Introduced in chapter \d", doc), qualname
     assert RETURNS_SECTION.search(doc), qualname
+
+
+def _introductions() -> list[tuple[str, str, int]]:
+    """(namespace as a notebook writes it, name, N) for every public callable whose docstring says
+    "Introduced in chapter N"."""
+    spaces = {"kf": kf, "kf.sim": kf.sim, "kf.plots": kf.plots, "kf.demos": kf.demos, "kf.check": kf.check}
+    found, seen = [], set()
+    for space, module in spaces.items():
+        for name in module.__all__:
+            obj = getattr(module, name)
+            said = re.search(r"Introduced in chapter (\d+)", inspect.getdoc(obj) or "") if callable(obj) else None
+            if said and id(obj) not in seen:
+                seen.add(id(obj))
+                found.append((space, name, int(said.group(1))))
+    return found
+
+
+def test_introduced_in_names_the_first_chapter_that_uses_it():
+    """A docstring's "Introduced in chapter N" is the first chapter whose cells call or name the function
+    (``kf.sim.name`` anywhere, or ```name(`` in the prose); a function no chapter names is not checked."""
+    chapters = {}
+    for path in sorted((REPO / "notebooks").glob("[0-9][0-9]_*.ipynb")):
+        cells = json.loads(path.read_text(encoding="utf-8"))["cells"]
+        chapters[int(path.name[:2])] = "\n".join("".join(cell["source"]) for cell in cells)
+    introductions = _introductions()
+    assert len(introductions) > 100
+    wrong = []
+    for space, name, said in introductions:
+        named = re.compile(rf"{re.escape(space)}\.{name}\b|`{name}\(")
+        first = next((number for number, text in chapters.items() if named.search(text)), None)
+        if first is not None and first != said:
+            wrong.append(f"{space}.{name}: says chapter {said}, first used in chapter {first}")
+    assert not wrong, "\n".join(wrong)

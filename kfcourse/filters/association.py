@@ -18,7 +18,7 @@ def mahalanobis(nu, S) -> float:
     .. math:: d = \sqrt{\nu^\top S^{-1} \nu}
 
     It counts "how many standard deviations of surprise" ``nu`` is, given its
-    covariance ``S``.  Introduced in chapter 8.
+    covariance ``S``.  Introduced in chapter 4 (chapter 8 gates readings with it).
 
     Parameters
     ----------

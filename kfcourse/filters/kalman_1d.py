@@ -190,7 +190,7 @@ def steady_state_1d(R, Q, a=1.0, c=1.0) -> tuple[float, float, float]:
         c^2 P^2 + \left(Q(1 - a^2) - R c^2\right) P - R Q = 0,
 
     whose non-negative root is taken; then :math:`K = cP/(c^2P+Q)` and the
-    posterior variance is :math:`(1 - Kc)P`.  Introduced in chapter 4.
+    posterior variance is :math:`(1 - Kc)P`.  Introduced in chapter 3; chapter 4 derives it.
 
     Parameters
     ----------

@@ -151,7 +151,7 @@ def process_noise_of_odometry(mu, u, dt: float, M) -> np.ndarray:
     .. math:: R = W M W^\top, \qquad W = \partial g / \partial u \text{ at } (\mu, u)
 
     ``W`` is :func:`~kfcourse.models.unicycle_control_jacobian`.  R has rank 2 (two noisy
-    controls move three pose numbers).  Introduced in chapter 10.
+    controls move three pose numbers).  Introduced in chapter 8.
 
     Parameters
     ----------
@@ -327,7 +327,8 @@ def loop_world(
 
     ``motion_noise`` scales the odometry noise (0.1 m/s, 0.05 rad/s at 1), ``sensor_noise`` the
     reading noise (0.1 m, 0.03 rad at 1); ``drive`` passes ``sensor_range``, ``laps``,
-    ``kidnap`` and ``dropout`` to :func:`~kfcourse.sim.simulate_robot`.  Introduced in chapter 10.
+    ``kidnap`` and ``dropout`` to :func:`~kfcourse.sim.simulate_robot`.  Introduced in chapter 11 (chapter
+    10's :func:`landmark_loop` drives it without naming it).
     """
     dt = 0.2  # s
     return simulate_robot(
