@@ -164,6 +164,9 @@ def test_make_badges_points_every_link_at_a_fork_and_a_tag(tmp_path):
     )
     assert done.returncode == 0, done.stdout + done.stderr
     assert "a-teacher/kf-course.fork at v2.1" in done.stdout
+    before, after = ((folder / "pyproject.toml").read_text(encoding="utf-8").splitlines() for folder in (ROOT, root))
+    assert len(after) == len(before)  # the two lines change, nothing else
+    assert sum(a != b for a, b in zip(before, after, strict=True)) == 2
     files = [root / "README.md", root / "pyproject.toml", *badges.chapters(root)]
     for path in files:
         assert old not in path.read_text(encoding="utf-8"), f"{path.name} still names {old}"

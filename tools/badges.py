@@ -35,7 +35,7 @@ COLUMN = "open on Binder"
 NOTE = "<!-- Binder badges, written by tools/badges.py: run it again after adding a chapter. -->"
 
 
-REPOSITORY = re.compile(r'(?m)^(Repository\s*=\s*)"https://github\.com/([\w.-]+/[\w.-]+?)/?"\s*$')
+REPOSITORY = re.compile(r'(?m)^(Repository\s*=\s*)"https://github\.com/([\w.-]+/[\w.-]+?)/?"[ \t]*$')
 BINDER_REF = re.compile(r'(?m)^(binder-ref\s*=\s*)"([^"]*)"')
 REPO_FORM = re.compile(r"^[\w.-]+/[\w.-]+$")
 REF_FORM = re.compile(r"^[\w.-]+$")
