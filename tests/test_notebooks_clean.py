@@ -125,3 +125,21 @@ def test_every_chapter_links_the_chapters_before_and_after_it_at_the_top():
             if other is not None:
                 link = f"{word}: [Chapter {int(other.name[:2])} ·"
                 assert link in top and f"]({other.name})" in top, f"{path.name}: no {link} ...]({other.name})"
+
+
+# \operatorname{erf}, \mathrm{diag}, \mathbb{E} or \mathbb E; not a unit such as \mathrm{m/s^2}
+OPERATOR = re.compile(r"\\(operatorname|mathbb|mathrm)\s*(?:\{([A-Za-z0-9]+)\}|([A-Z])\b)")
+
+
+def test_every_operator_a_chapter_uses_is_on_the_notation_page():
+    """A \\mathbb{E}, \\operatorname{erf} or \\mathrm{diag} in a chapter is one a student can look up."""
+
+    def operators(path: Path) -> set[tuple[str, str]]:
+        text = "".join("".join(cell["source"]) for cell in cells(path)[1] if cell["cell_type"] == "markdown")
+        return {(kind, braced or bare) for kind, braced, bare in OPERATOR.findall(text)}
+
+    listed = operators(ROOT / "notebooks" / "notation.ipynb")
+    used = {op: path.name for path in NOTEBOOKS if path.name not in EXTRA for op in operators(path)}
+    assert ("mathbb", "E") in used and ("operatorname", "erf") in used
+    missing = sorted(f"\\{kind}{{{name}}} ({used[kind, name]})" for kind, name in used.keys() - listed)
+    assert not missing, "not on the notation page: " + ", ".join(missing)
