@@ -22,7 +22,10 @@ _SMALL = 16  # entries: an array this small is checked on Python floats
 
 
 def _floats(x, name: str) -> np.ndarray:
-    """``x`` as a float array, rejecting non-numbers (NaN and inf are left to the caller)."""
+    """``x`` as a float array, rejecting non-numbers, a string of digits such as "3.6" too (NaN and inf are
+    left to the caller)."""
+    if isinstance(x, str | bytes) or (isinstance(x, list | tuple) and any(isinstance(e, str | bytes) for e in x)):
+        raise ValueError(f"{name} must be numeric, got {x!r}")
     try:
         return np.asarray(x, dtype=float)
     except (TypeError, ValueError):
@@ -207,11 +210,36 @@ def covariance_stack(x, name: str, N: int, n: int) -> np.ndarray:
 def update_inputs(mu_bar, Sig_bar, z, Q) -> tuple[np.ndarray, np.ndarray, np.ndarray, np.ndarray]:
     """The inputs every measurement update shares: the predicted belief
     ``mu_bar`` (n,), ``Sig_bar`` (n, n), the reading ``z`` (k,) and its noise
-    covariance ``Q`` (k, k)."""
+    covariance ``Q`` (k, k), each checked on its own; that z and Q agree on k is
+    for :func:`reading_size`, with the update's other inputs that carry k."""
     mu_bar = vector(mu_bar, "mu_bar")
     Sig_bar = covariance(Sig_bar, "Sig_bar", mu_bar.size)
-    z = vector(z, "z")
-    return mu_bar, Sig_bar, z, covariance(Q, "Q", z.size)
+    return mu_bar, Sig_bar, vector(z, "z"), covariance(Q, "Q")
+
+
+LENGTH, ROWS, SQUARE = "length {}", "{} rows", "shape ({0}, {0})"  # how an input carries k, for reading_size
+
+
+def reading_size(**carriers: tuple[int, str]) -> int:
+    """k, the size of one reading, on which every input that carries it agrees.
+
+    ``carriers`` maps each input, in the order of the signature, to the k it carries and how
+    (:data:`LENGTH`, :data:`ROWS`, :data:`SQUARE`): ``z=(3, LENGTH), Q=(2, SQUARE)``.  When they
+    disagree, the input that disagrees with all the others is named; of two, the second is named
+    against the first."""
+    items = list(carriers.items())
+    sizes = {k for k, _ in carriers.values()}
+    if len(sizes) == 1:
+        return sizes.pop()
+    for i, (name, (k, how)) in enumerate(items):
+        rest = items[:i] + items[i + 1 :]
+        agreed = {other_k for _, (other_k, _) in rest}
+        if len(agreed) == 1 and (len(items) > 2 or i == len(items) - 1):
+            want = agreed.pop()
+            why = " and ".join(f"{other} has {other_how.format(other_k)}" for other, (other_k, other_how) in rest)
+            raise ValueError(f"{name} must have {how.format(want)}, as {why}; got {how.format(k)}")
+    said = ", ".join(f"{name} has {how.format(k)}" for name, (k, how) in items)
+    raise ValueError(f"{said}: they must agree on the size of one reading")
 
 
 def probabilities(x, name: str) -> np.ndarray:
@@ -261,8 +289,8 @@ def optional_function(f, name: str) -> Callable | None:
     return None if f is None else function(f, name)
 
 
-def output(y, name: str, n: int) -> np.ndarray:
-    """The result of a model callable: a finite vector of length ``n``."""
+def output(y, name: str, n: int | None = None) -> np.ndarray:
+    """The result of a model callable: a finite vector (of length ``n`` if given)."""
     return vector(y, f"the result of {name}", n)
 
 

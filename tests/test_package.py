@@ -182,3 +182,22 @@ def test_introduced_in_names_the_first_chapter_that_uses_it():
         if first is not None and first != said:
             wrong.append(f"{space}.{name}: says chapter {said}, first used in chapter {first}")
     assert not wrong, "\n".join(wrong)
+
+
+def _seeded() -> list:
+    """Every public function and demo that takes a ``seed``, with the other arguments it needs."""
+    needs = {"monte_carlo_drift": {"step_std": 0.05, "n": 10, "n_robots": 10}}
+    found = []
+    for space in (kf.sim, kf.demos):
+        for name in space.__all__:
+            obj = getattr(space, name)
+            if inspect.isfunction(obj) and "seed" in inspect.signature(obj).parameters:
+                found.append(pytest.param(obj, needs.get(name, {}), id=f"{space.__name__}.{name}"))
+    return found
+
+
+@pytest.mark.parametrize(("function", "needs"), _seeded())
+@pytest.mark.parametrize("seed", ["3", 1.5, -3, True, None])
+def test_every_seed_is_checked_by_name(function, needs, seed):
+    with pytest.raises(ValueError, match=r"^seed must be a whole number >= 0"):
+        function(seed=seed, **needs)

@@ -7,6 +7,7 @@ from functools import partial
 import ipywidgets as widgets
 import numpy as np
 
+from .. import _validate as v
 from ..filters.gaussian import mass_inside
 from ..plots.covariance import covariance_view, update_covariance
 from ..plots.style import FigureRenderer
@@ -94,6 +95,7 @@ def covariance_ellipse(seed: int = 0) -> Demo:
     -------
     Demo (an ipywidgets.VBox)
     """
+    seed = v.whole(seed, "seed", 0)
     model = CovarianceModel(seed)
     view = covariance_view(SIGMAS)
     caption = (

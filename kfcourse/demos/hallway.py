@@ -7,6 +7,7 @@ from functools import partial
 import ipywidgets as widgets
 import numpy as np
 
+from .. import _validate as v
 from ..filters.bayes import bayes_predict, bayes_update
 from ..plots.hallway import hallway_view, update_hallway
 from ..plots.style import FigureRenderer
@@ -163,6 +164,7 @@ def hallway(seed: int = 0) -> Demo:
     -------
     Demo (an ipywidgets.VBox)
     """
+    seed = v.whole(seed, "seed", 0)
     model = HallwayModel(seed)
     view = hallway_view(model.doors)
     boundary = widgets.ToggleButtons(options=["wrap", "wall"], value=model.boundary, description="ends:")

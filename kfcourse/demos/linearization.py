@@ -5,6 +5,7 @@ from __future__ import annotations
 import ipywidgets as widgets
 import numpy as np
 
+from .. import _validate as v
 from ..plots.ekf import linearization_view, update_linearization_view
 from ..plots.style import FigureRenderer
 from ..sim.curves import FUNCTIONS, GaussianThroughCurve
@@ -65,6 +66,7 @@ def linearization(seed: int = 0) -> Demo:
     -------
     Demo (an ipywidgets.VBox)
     """
+    seed = v.whole(seed, "seed", 0)
     model = LinearizationModel(seed=seed, m=1.0, s=0.5, function="x²", n_samples=N_SAMPLES)
     view = linearization_view(OUTPUT_LIMITS, X_RANGE)
     caption = (

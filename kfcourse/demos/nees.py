@@ -6,6 +6,7 @@ from __future__ import annotations
 import ipywidgets as widgets
 import numpy as np
 
+from .. import _validate as v
 from ..plots.style import FigureRenderer
 from ..plots.tracking import nees_view, update_nees_view
 from ..sim.target import filter_tracks, nees, nees_band, simulate_tracks
@@ -117,6 +118,7 @@ def nees_panel(seed: int = 0) -> Demo:
     -------
     Demo (an ipywidgets.VBox)
     """
+    seed = v.whole(seed, "seed", 0)
     model = NeesPanel(seed)
     view = nees_view(model.batch.dt * np.arange(N_STEPS), model.band, DOF, N_TRACKS, Y_RANGE)
     readout = widgets.HTML()  # text under the picture: no glyphs to render into the PNG

@@ -7,6 +7,7 @@ from functools import partial
 import ipywidgets as widgets
 import numpy as np
 
+from .. import _validate as v
 from ..filters.bayes import bayes_predict, bayes_update
 from ..filters.particle import effective_sample_size, resample_systematic
 from ..plots.particle_hallway import particle_hallway_view, update_particle_hallway
@@ -165,6 +166,7 @@ def particle_hallway(seed: int = 0) -> Demo:
     -------
     Demo (an ipywidgets.VBox)
     """
+    seed = v.whole(seed, "seed", 0)
     model = ParticleHallwayModel(seed)
     view = particle_hallway_view(model.doors)
     caption = (

@@ -7,6 +7,7 @@ from functools import partial
 import ipywidgets as widgets
 import numpy as np
 
+from .. import _validate as v
 from ..plots.raw_vs_filtered import raw_vs_filtered_view, update_raw_vs_filtered
 from ..plots.style import FigureRenderer
 from ..sim.line import simulate_line
@@ -87,6 +88,7 @@ def raw_vs_filtered(seed: int = 0) -> Demo:
     -------
     Demo (an ipywidgets.VBox)
     """
+    seed = v.whole(seed, "seed", 0)
     model = RawVsFiltered(seed)
     view = raw_vs_filtered_view(N_STEPS)
     caption = (

@@ -5,6 +5,7 @@ from __future__ import annotations
 import ipywidgets as widgets
 import numpy as np
 
+from .. import _validate as v
 from ..filters.ukf import sigma_points as make_sigma_points
 from ..filters.ukf import unscented_1d
 from ..plots.style import FigureRenderer
@@ -119,6 +120,7 @@ def sigma_points(seed: int = 0) -> Demo:
     -------
     Demo (an ipywidgets.VBox)
     """
+    seed = v.whole(seed, "seed", 0)
     model = SigmaPointsModel(seed=seed)
     view = sigma_points_view(OUTPUT_LIMITS, X_RANGE)
     caption = (

@@ -5,6 +5,7 @@ from __future__ import annotations
 import ipywidgets as widgets
 import numpy as np
 
+from .. import _validate as v
 from ..filters.kalman_1d import kf_1d_gain, kf_1d_predict, kf_1d_update
 from ..plots.step_through import step_through_view, update_step_through
 from ..plots.style import FigureRenderer
@@ -171,6 +172,7 @@ def step_through(seed: int = 0) -> Demo:
     -------
     Demo (an ipywidgets.VBox)
     """
+    seed = v.whole(seed, "seed", 0)
     model = StepThroughModel(seed)
     view = step_through_view()
     table = widgets.HTML()

@@ -5,6 +5,7 @@ from __future__ import annotations
 import ipywidgets as widgets
 import numpy as np
 
+from .. import _validate as v
 from ..plots import palette
 from ..plots.style import FigureRenderer
 from ..plots.tracking import tracker_view, update_tracker_view
@@ -178,6 +179,7 @@ def tracker(seed: int = 0) -> Demo:
     -------
     Demo (an ipywidgets.VBox)
     """
+    seed = v.whole(seed, "seed", 0)
     model = Tracker(seed)
     view = tracker_view(model.run)
     readout = widgets.HTML()  # text under the picture: no glyphs to render into the PNG

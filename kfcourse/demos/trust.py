@@ -6,6 +6,7 @@ from functools import partial
 
 import ipywidgets as widgets
 
+from .. import _validate as v
 from ..filters.gaussian import fuse
 from ..filters.kalman_1d import kf_1d_gain
 from ..plots.style import FigureRenderer
@@ -83,6 +84,7 @@ def trust_slider(seed: int = 0) -> Demo:
     -------
     Demo (an ipywidgets.VBox)
     """
+    seed = v.whole(seed, "seed", 0)
     model = TrustModel()
     view = trust_view()
     caption = (

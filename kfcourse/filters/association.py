@@ -84,6 +84,7 @@ def associate(
         gated out) and every landmark's distance, shape (L,).
     """
     mu_bar, Sig_bar, z, Q = v.update_inputs(mu_bar, Sig_bar, z, Q)
+    v.reading_size(z=(z.size, v.LENGTH), Q=(Q.shape[0], v.SQUARE))
     lms = v.matrix(landmarks, "landmarks")
     gate = v.positive(gate, "gate", "a distance", "standard deviations")
     h, H = v.function(h, "h"), v.function(H, "H")

@@ -84,7 +84,8 @@ def ekf_update(
     n, k = mu_bar.size, z.size
     h, H = v.function(h, "h"), v.function(H, "H")
     residual = v.optional_function(residual, "residual")
-    z_hat = v.output(h(mu_bar), "h", k)  # predicted reading h(mu_bar)
+    z_hat = v.output(h(mu_bar), "h")  # predicted reading h(mu_bar)
+    v.reading_size(z=(k, v.LENGTH), **{"the result of h": (z_hat.size, v.LENGTH)}, Q=(Q.shape[0], v.SQUARE))
     H_t = v.output_matrix(H(mu_bar), "H", k, n)  # H at the predicted mean
     y = z - z_hat if residual is None else v.output(residual(z, z_hat), "residual", k)  # innovation
     S = H_t @ Sig_bar @ H_t.T + Q  # S = H Sig_bar H^T + Q

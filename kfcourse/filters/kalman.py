@@ -121,7 +121,8 @@ def kf_update(mu_bar, Sig_bar, z, H, Q) -> tuple[np.ndarray, np.ndarray]:
     (mu, Sig) : shapes (n,), (n, n)
     """
     mu_bar, Sig_bar, z, Q = v.update_inputs(mu_bar, Sig_bar, z, Q)
-    H = v.matrix(H, "H", z.size, mu_bar.size)
+    H = v.matrix(H, "H", None, mu_bar.size)
+    v.reading_size(z=(z.size, v.LENGTH), H=(H.shape[0], v.ROWS), Q=(Q.shape[0], v.SQUARE))
     S = H @ Sig_bar @ H.T + Q  # (3) innovation covariance
     try:
         K = Sig_bar @ H.T @ np.linalg.inv(S)  # (3) Kalman gain
@@ -159,8 +160,8 @@ def kf_step(mu, Sig, u, z, F, B, H, R, Q) -> tuple[np.ndarray, np.ndarray]:
     """
     mu, Sig, u, F, B, R = _predict_inputs(mu, Sig, u, F, B, R)
     if z is not None:
-        z = v.vector(z, "z")
-        H, Q = v.matrix(H, "H", z.size, mu.size), v.covariance(Q, "Q", z.size)
+        z, H, Q = v.vector(z, "z"), v.matrix(H, "H", None, mu.size), v.covariance(Q, "Q")
+        v.reading_size(z=(z.size, v.LENGTH), H=(H.shape[0], v.ROWS), Q=(Q.shape[0], v.SQUARE))
 
     mu_bar = F @ mu + B @ u  # (1) predict mean
     Sig_bar = F @ Sig @ F.T + R  # (2) predict covariance

@@ -265,7 +265,8 @@ def ukf_update(
     x_residual = v.optional_function(x_residual, "x_residual")
     lam, beta = v.scalar(lam, "lam"), v.scalar(beta, "beta")
     chi, wm, wc = sigma_points(mu_bar, Sig_bar, lam, beta)
-    Z = _on_points(h(chi), "h", len(chi), k)  # Z_i = h(chi_i)
+    Z = _on_points(h(chi), "h", len(chi))  # Z_i = h(chi_i)
+    v.reading_size(z=(k, v.LENGTH), **{"the result of h": (Z.shape[1], "{} columns")}, Q=(Q.shape[0], v.SQUARE))
     z_hat, S_Z, dZ = _weighted_moments(Z, wm, wc, residual, mean)  # predicted reading z_hat = sum w_i Z_i
     S = S_Z + Q  # S = sum w_i (Z_i - z_hat)(Z_i - z_hat)^T + Q
     dX = chi - mu_bar if x_residual is None else _on_points(x_residual(chi, mu_bar), "x_residual", *chi.shape)

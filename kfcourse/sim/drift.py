@@ -67,6 +67,7 @@ def monte_carlo_drift(step_std: float, n, n_robots: int = 10_000, seed: int = 0)
     -------
     float or ndarray (m), same shape as ``n``
     """
+    seed = v.whole(seed, "seed", 0)
     s = v.non_negative(step_std, "step_std", "a standard deviation", "m")
     steps = _steps(n).astype(int)
     if (steps < 1).any():

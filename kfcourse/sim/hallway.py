@@ -180,6 +180,7 @@ def simulate_hallway(
     -------
     HallwayRun
     """
+    seed = v.whole(seed, "seed", 0)
     n_cycles = v.whole(n_cycles, "n_cycles", 0)
     pm = v.probability(motion_reliability, "motion_reliability")
     ps = v.probability(sensor_reliability, "sensor_reliability")

@@ -60,6 +60,7 @@ def simulate_line(
     -------
     LineRun
     """
+    seed = v.whole(seed, "seed", 0)
     n_steps = v.whole(n_steps, "n_steps", 2)
     step_std = v.positive(step_std, "step_std", "a standard deviation", "m")
     sensor_std = v.positive(sensor_std, "sensor_std", "a standard deviation", "m")

@@ -120,6 +120,7 @@ def simulate_particle_hallway(
     -------
     ParticleHallwayRun
     """
+    seed = v.whole(seed, "seed", 0)
     n = v.whole(n_particles, "n_particles", 1)
     hall = simulate_hallway(n_cycles, motion_reliability, sensor_reliability, boundary, seed=seed)
     n_cells = hall.doors.shape[1]

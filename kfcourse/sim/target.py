@@ -184,6 +184,7 @@ def simulate_target(seed: int = 0, sensor_std: float = SENSOR_STD) -> TargetRun:
     -------
     TargetRun
     """
+    seed = v.whole(seed, "seed", 0)
     sensor_std = v.positive(sensor_std, "sensor_std", "a standard deviation", "m")
     omega = np.concatenate([np.full(round(duration / DT), rate) for duration, rate in LEGS])  # rad/s per step
     theta = np.cumsum(omega * DT)  # heading (rad)
@@ -305,6 +306,7 @@ def simulate_tracks(
     -------
     TrackBatch
     """
+    seed = v.whole(seed, "seed", 0)
     n_tracks, n_steps = v.whole(n_tracks, "n_tracks", 2), v.whole(n_steps, "n_steps", 2)
     accel_std = v.non_negative(accel_std, "accel_std", "a standard deviation", "m/s²")
     sensor_std = v.positive(sensor_std, "sensor_std", "a standard deviation", "m")

@@ -145,6 +145,7 @@ def simulate_walk(
     -------
     WalkRun
     """
+    seed = v.whole(seed, "seed", 0)
     n_steps = v.whole(n_steps, "n_steps", 1)
     u = v.scalar(u, "u")
     R_true = v.variance(R_true, "R_true")

@@ -198,6 +198,8 @@ BAD_INPUT = [
         "Sig_bar",
     ),
     ("ekf_update/z NaN", lambda: kf.ekf_update(POSE, I3, [4.6, NAN], h_rb, H_rb, Q_CH8), "z"),
+    ("ekf_update/z wrong length", lambda: kf.ekf_update(POSE, I3, [4.6, 0.95, 1.0], h_rb, H_rb, Q_CH8), "z"),
+    ("ekf_update/Q wrong shape", lambda: kf.ekf_update(POSE, I3, [4.6, 0.95], h_rb, H_rb, I3), "Q"),
     (
         "ekf_update/residual wrong shape",
         lambda: kf.ekf_update(POSE, I3, [4.6, 0.95], h_rb, H_rb, Q_CH8, residual=lambda a, b: [0.0]),

@@ -276,6 +276,7 @@ BAD_INPUT = [
     ("kf_update/Sig_bar indefinite", lambda: kf.kf_update(MU2, INDEFINITE, [1.2], H12, Q11), "Sig_bar"),
     ("kf_update/Sig_bar non-symmetric", lambda: kf.kf_update(MU2, NONSYM, [1.2], H12, Q11), "Sig_bar"),
     ("kf_update/z NaN", lambda: kf.kf_update(MU2, I2, [NAN], H12, Q11), "z"),
+    ("kf_update/z wrong length", lambda: kf.kf_update(MU2, I2, [1.2, 0.3], H12, Q11), "z"),  # H and Q agree on 1
     ("kf_update/H wrong shape", lambda: kf.kf_update(MU2, I2, [1.2], [[1.0, 0.0, 0.0]], Q11), "H"),
     ("kf_update/Q negative", lambda: kf.kf_update(MU2, I2, [1.2], H12, [[-0.5]]), "Q"),
     ("kf_update/Q wrong shape", lambda: kf.kf_update(MU2, I2, [1.2], H12, I2), "Q"),
@@ -283,6 +284,7 @@ BAD_INPUT = [
     ("kf_step/Q non-symmetric", lambda: kf.kf_step(MU2, I2, None, [1.0, 2.0], F2, None, I2, 0.01 * I2, NONSYM), "Q"),
     ("kf_step/H wrong shape", lambda: kf.kf_step(MU2, I2, [0.0], [1.2], F2, B2, [[1.0]], 0.01 * I2, Q11), "H"),
     ("kf_step/z inf", lambda: kf.kf_step(MU2, I2, [0.0], [INF], F2, B2, H12, 0.01 * I2, Q11), "z"),
+    ("kf_step/z wrong length", lambda: kf.kf_step(MU2, I2, [0.0], [1.2, 0.3], F2, B2, H12, 0.01 * I2, Q11), "z"),
     (
         "kf_step/Sig negative variance",
         lambda: kf.kf_step(MU2, NEGVAR, [0.0], [1.2], F2, B2, H12, 0.01 * I2, Q11),

@@ -223,6 +223,8 @@ BAD_INPUT = [
         ]
     ],
     ("kf_1d_predict/var negative", lambda: kf.kf_1d_predict(2.0, -0.4, 1.0), "var"),
+    ("kf_1d_step/z a string of digits", lambda: kf.kf_1d_step(2.0, 0.4, 1.0, "3.6"), "z"),
+    ("kf_1d_step/mu a list with a string", lambda: kf.kf_1d_step(["2.0"], 0.4, 1.0, 3.6), "mu"),
     ("kf_1d_predict/mu NaN", lambda: kf.kf_1d_predict(NAN, 0.4, 1.0), "mu"),
     ("kf_1d_predict/u vector", lambda: kf.kf_1d_predict(2.0, 0.4, [1.0, 2.0]), "u"),
     ("kf_1d_predict/a inf", lambda: kf.kf_1d_predict(2.0, 0.4, 1.0, a=INF), "a"),

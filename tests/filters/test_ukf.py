@@ -251,6 +251,7 @@ BAD_INPUT = [
     ),
     ("ukf_update/Sig_bar wrong shape", lambda: kf.ukf_update(MU2, I3, [1.2], lambda x: x[:1], Q11, 1.0), "Sig_bar"),
     ("ukf_update/z inf", lambda: kf.ukf_update(MU2, I2, [INF], lambda x: x[:1], Q11, 1.0), "z"),
+    ("ukf_update/z wrong length", lambda: kf.ukf_update(MU2, I2, [1.2, 0.3], lambda X: X[:, :1], Q11, 1.0), "z"),
 ]
 
 

@@ -75,3 +75,18 @@ def test_a_non_finite_entry_off_the_diagonal_is_found_too():
     R[0, 2] = R[2, 0] = NAN  # symmetric, so only the finiteness look can catch it
     with pytest.raises(ValueError, match=r"^R must be finite"):
         kf.kf_step(np.zeros(3), I3, None, [1.0, 2.0], I3, None, np.eye(2, 3), R, I2)
+
+
+def test_a_reading_size_blames_the_one_input_that_disagrees_or_names_them_all():
+    sizes = {"z": (3, v.LENGTH), "H": (2, v.ROWS), "Q": (2, v.SQUARE)}
+    with pytest.raises(
+        ValueError, match=r"^z must have length 2, as H has 2 rows and Q has shape \(2, 2\); got length 3"
+    ):
+        v.reading_size(**sizes)
+    with pytest.raises(ValueError, match=r"^Q must have shape \(3, 3\), as z has length 3 and H has 3 rows"):
+        v.reading_size(**{**sizes, "H": (3, v.ROWS)})
+    with pytest.raises(ValueError, match=r"^z has length 3, H has 2 rows, Q has shape \(1, 1\): they must agree"):
+        v.reading_size(**{**sizes, "Q": (1, v.SQUARE)})
+    with pytest.raises(ValueError, match=r"^Q must have shape \(3, 3\), as z has length 3; got shape \(2, 2\)"):
+        v.reading_size(z=(3, v.LENGTH), Q=(2, v.SQUARE))  # of two, the second against the first
+    assert v.reading_size(z=(2, v.LENGTH), Q=(2, v.SQUARE)) == 2
