@@ -19,12 +19,13 @@ _SYM_RTOL = 1e-9  # relative asymmetry tolerated in a covariance
 _PSD_RTOL = 1e-9  # relative negative eigenvalue tolerated in a covariance
 _SUM_ATOL = 1e-6  # how far a probability vector may be from summing to 1
 _SMALL = 16  # entries: an array this small is checked on Python floats
+_TEXT, _SEQUENCES = (str, bytes), (list, tuple)  # text is never a number; a list or tuple may hold some
 
 
 def _floats(x, name: str) -> np.ndarray:
     """``x`` as a float array, rejecting non-numbers, a string of digits such as "3.6" too (NaN and inf are
     left to the caller)."""
-    if isinstance(x, str | bytes) or (isinstance(x, list | tuple) and any(isinstance(e, str | bytes) for e in x)):
+    if isinstance(x, _TEXT) or (type(x) in _SEQUENCES and any(isinstance(e, _TEXT) for e in x)):
         raise ValueError(f"{name} must be numeric, got {x!r}")
     try:
         return np.asarray(x, dtype=float)
