@@ -11,6 +11,7 @@ lesson's table with these numbers beside its words.
 
 from __future__ import annotations
 
+import inspect
 import time
 from dataclasses import dataclass
 from functools import partial
@@ -179,14 +180,20 @@ def _particle_ms(N: int, seed: int) -> float:
     return 1000.0 * (lap - world) / len(loop_world(seed).t)
 
 
+# particle_loop's settings that its run records as they were given (the map, the range and the start are the world's)
+_PARTICLE_DEFAULTS = {
+    name: p.default
+    for name, p in inspect.signature(particle_loop).parameters.items()
+    if name in ParticleRun.__dataclass_fields__ and name not in ("starts", "landmarks")
+}
+
+
 def _particle_lap(N: int, made: list):
     """``drive(seed, **settings)`` for :func:`_score`: the particle filter's lap with N particles, taken from
     ``made`` where one of those runs is that very lap, else run."""
 
     def drive(seed: int, **settings):
-        lap = {"n_particles": N, "resample": "systematic", "labelled": True, "global_start": False, "injection": 0.0}
-        lap |= {"seed": seed, "kidnap": None, "dropout": None, "motion_noise": 1.0, "sensor_noise": 1.0, "laps": 1}
-        lap |= settings
+        lap = _PARTICLE_DEFAULTS | {"seed": seed, "n_particles": N} | settings
         for run in made:
             if all(getattr(run, name) == value for name, value in lap.items()) and _same_world(run, lap):
                 return run
