@@ -172,7 +172,7 @@ def particle_hallway(seed: int = 0) -> Demo:
     caption = (
         f"<b>Particles in chapter 1's hallway.</b> Bars: the histogram filter over {N_CELLS} cells "
         "(purple after <i>Predict</i>, teal after <i>Update</i>); black outlines: the share of the "
-        "particles in each cell. Below the hallway, every particle as a dot, darker the heavier. "
+        "particles in each cell. Below the hallway, every particle as a purple dot, darker the heavier. "
         "TV is the total variation distance between outlines and bars: move the particle count."
     )
     return Demo(

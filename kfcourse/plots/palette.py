@@ -18,7 +18,13 @@ against the lighter grey fixes that.
 Coloured text on white uses the ``*_TEXT`` shades, each at least 4.5:1 in WCAG 2
 contrast (relative luminance); a role colour serves as its own text shade where it
 already reaches that. tests/plots/test_palette.py checks all of these numbers.
+
+Particles are purple in every picture: a particle is a sample moved by the prediction, and
+its shade shows its weight, pale for the lightest to the prediction purple for the heaviest
+(``PARTICLE_WEIGHTS``), so that the teal estimate stands out against a cloud of them.
 """
+
+from matplotlib.colors import LinearSegmentedColormap
 
 PREDICTION = "#7b4fc9"  # purple: the predicted belief (bel-bar)
 MEASUREMENT = "#f28c28"  # orange: sensor readings and the measurement likelihood
@@ -40,6 +46,10 @@ PREDICTION_TEXT = PREDICTION  # 5.5:1
 MEASUREMENT_TEXT = "#a85a10"  # 5.1:1 (the orange itself is 2.5:1)
 ESTIMATE_TEXT = ESTIMATE  # 5.2:1
 TRUTH_TEXT = "#6b6b6b"  # 5.3:1 (the grey itself is 2.0:1)
+
+# Particles, shaded by weight: 0 (lightest) pale purple to 1 (heaviest) the prediction purple.
+PARTICLE_LIGHT = "#d6cbef"
+PARTICLE_WEIGHTS = LinearSegmentedColormap.from_list("particle_weights", [PARTICLE_LIGHT, PREDICTION])
 
 
 def line_style(color) -> str:

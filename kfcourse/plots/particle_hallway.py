@@ -4,8 +4,9 @@ Three panels share chapter 1's cell axis.  On top, the belief :math:`\mathrm{bel
 (purple after a prediction, teal after an update) with the particle histogram over them as
 black outlines, and a readout of the particle count, the total variation distance between the
 two and the effective sample size.  In the middle, chapter 1's map of the hallway.  At the
-bottom, the particles themselves: one dot each at its cell, jittered so that the dots of a cell
-spread out, darker the heavier its weight.
+bottom, the particles themselves: one purple dot each at its cell, jittered so that the dots of a
+cell spread out, darker the heavier its weight (:data:`palette.PARTICLE_WEIGHTS`, as in every
+picture of particles).
 
 :func:`particle_hallway_view` builds the figure; :func:`update_particle_hallway` shows a model's
 state on it.  Introduced in chapter 11.
@@ -18,7 +19,6 @@ from dataclasses import dataclass
 import numpy as np
 from matplotlib.axes import Axes
 from matplotlib.collections import PathCollection
-from matplotlib.colors import LinearSegmentedColormap
 from matplotlib.container import BarContainer
 from matplotlib.figure import Figure
 from matplotlib.lines import Line2D
@@ -31,7 +31,6 @@ from .hallway import BARS_SHARE, TOP_STEP, hallway_map
 from .style import new_figure
 
 JITTER_DOTS = 5000  # jitter positions made once; a larger cloud reuses them
-WEIGHT_SHADES = LinearSegmentedColormap.from_list("weight", ["#d3ece8", palette.ESTIMATE, "#003f38"])
 
 
 @dataclass(frozen=True)
@@ -44,7 +43,7 @@ class ParticleHallwayView:
     ax_cloud: Axes  #: the particles as dots
     bars: BarContainer  #: the histogram filter's belief
     cloud: BarContainer  #: the particle histogram, outlines
-    dots: PathCollection  #: one dot per particle
+    dots: PathCollection  #: one dot per particle, purple shaded by weight (palette.PARTICLE_WEIGHTS)
     jitter: np.ndarray  #: (JITTER_DOTS, 2): where in its cell each dot sits
     robot: Line2D
     end_walls: tuple[Line2D, Line2D]
@@ -82,9 +81,11 @@ def particle_hallway_view(doors) -> ParticleHallwayView:
     ax_cloud.grid(False)
     ax_cloud.set_ylabel("particles")
     ax_cloud.set_xticks(np.arange(n))
-    ax_cloud.set_xlabel("cell   (dots: one per particle, darker = heavier; grey arrow: the true robot)")
+    ax_cloud.set_xlabel("cell   (purple dots: one per particle, darker = heavier; grey arrow: the true robot)")
     jitter = np.random.default_rng(0).uniform([-0.38, 0.06], [0.38, 0.94], size=(JITTER_DOTS, 2))
-    dots = ax_cloud.scatter(jitter[:1, 0], jitter[:1, 1], s=5, c=[1.0], cmap=WEIGHT_SHADES, vmin=0, vmax=1, lw=0)
+    dots = ax_cloud.scatter(
+        jitter[:1, 0], jitter[:1, 1], s=5, c=[1.0], cmap=palette.PARTICLE_WEIGHTS, vmin=0, vmax=1, lw=0
+    )
     return ParticleHallwayView(fig, ax, ax_map, ax_cloud, bars, cloud, dots, jitter, robot, end_walls, readout, legend)
 
 

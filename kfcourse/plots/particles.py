@@ -3,9 +3,10 @@ r"""The particle filter on the landmark loop (chapter 11): the cloud on chapter 
 The map is chapter 10's (:mod:`kfcourse.plots.loop`): the landmarks (purple squares), the
 true path (grey, dotted) and robot (grey), the estimate's trail and robot (teal) with its 2-sigma
 position ellipse, and teal beams from the estimate to the landmarks read at that step.  On
-it, the particles as small dots, after the step's prediction, shaded by their weight
-before resampling: pale where a particle explains the readings badly, dark purple where
-it explains them best, the heaviest drawn on top.
+it, the particles as small purple dots (:data:`palette.PARTICLE_WEIGHTS`, as in every picture of
+particles), after the step's prediction, shaded by their weight before resampling: pale where a
+particle explains the readings badly, dark purple where it explains them best, the heaviest
+drawn on top.
 
 Under the map, a strip shows the effective sample size over the whole run as a share of
 the particle count, :math:`N_{\text{eff}} / N`, with the :math:`N/2` line under which the
@@ -25,7 +26,7 @@ from types import SimpleNamespace
 
 import numpy as np
 from matplotlib.collections import LineCollection, PathCollection
-from matplotlib.colors import LinearSegmentedColormap, to_rgba
+from matplotlib.colors import to_rgba
 from matplotlib.figure import Figure
 from matplotlib.lines import Line2D
 from matplotlib.patches import Ellipse, Polygon
@@ -40,7 +41,6 @@ from .style import new_figure
 __all__ = ["CloudView", "cloud_chart", "cloud_view", "update_cloud_view", "weight_shades"]
 
 DOT_SIZE = 4.0  # points squared: 10 000 dots still leave the map readable
-WEIGHTS = LinearSegmentedColormap.from_list("weights", ["#d6cbef", palette.PREDICTION])  # light to heavy
 STRIP_HEIGHT = 1.0  # inches: the ESS strip
 LEGEND_HEIGHT = 0.45  # inches above the map for its legend (two rows)
 RESAMPLE_LINE = 0.5  # the filter resamples when N_eff < N/2
@@ -73,7 +73,7 @@ class CloudView:
     fig: Figure
     truth_before: Line2D  #: true path (up to a kidnap)
     truth_after: Line2D  #: true path after a kidnap (empty without one)
-    cloud: PathCollection  #: the particles, shaded by weight
+    cloud: PathCollection  #: the particles, purple shaded by weight (palette.PARTICLE_WEIGHTS)
     beams: LineCollection  #: teal, to the landmarks read at the step
     trail: Line2D  #: the estimate's path up to the step shown
     truth_robot: Polygon
@@ -150,7 +150,15 @@ def cloud_view(model, width: float = 6.4, dot_size: float = DOT_SIZE) -> CloudVi
     (truth_before,) = ax.plot([], [], **path)
     (truth_after,) = ax.plot([], [], **path)
     cloud = ax.scatter(
-        np.zeros(1), np.zeros(1), s=dot_size, c=[1.0], cmap=WEIGHTS, vmin=0.0, vmax=1.0, linewidths=0, zorder=4.5
+        np.zeros(1),
+        np.zeros(1),
+        s=dot_size,
+        c=[1.0],
+        cmap=palette.PARTICLE_WEIGHTS,
+        vmin=0.0,
+        vmax=1.0,
+        linewidths=0,
+        zorder=4.5,
     )
     lines = beams(ax)
     (trail,) = ax.plot([], [], color=palette.ESTIMATE, lw=1.6, alpha=0.9)
@@ -165,8 +173,8 @@ def cloud_view(model, width: float = 6.4, dot_size: float = DOT_SIZE) -> CloudVi
     handles = [
         ax.scatter([], [], marker="s", color=palette.LANDMARK, s=40),
         Line2D([], [], **path),
-        Line2D([], [], ls="", marker="o", ms=4, color=WEIGHTS(0.15)),
-        Line2D([], [], ls="", marker="o", ms=4, color=WEIGHTS(1.0)),
+        Line2D([], [], ls="", marker="o", ms=4, color=palette.PARTICLE_WEIGHTS(0.15)),
+        Line2D([], [], ls="", marker="o", ms=4, color=palette.PARTICLE_WEIGHTS(1.0)),
         Line2D([], [], color=palette.ESTIMATE, lw=1.6),
         Ellipse((0, 0), 1, 1, fill=False, edgecolor=palette.ESTIMATE, lw=2),
         Line2D([], [], color=palette.ESTIMATE, lw=1.2),

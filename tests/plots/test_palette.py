@@ -108,6 +108,24 @@ def test_text_shades_keep_their_role_hue():
         assert a1 * a2 + b1 * b2 >= 0.8 * (a1**2 + b1**2) ** 0.5 * (a2**2 + b2**2) ** 0.5 - 1e-6
 
 
+def test_particles_are_shades_of_the_prediction_purple():
+    """palette.PARTICLE_WEIGHTS runs from a pale shade of the prediction purple (weight 0) to the purple itself (1),
+    lighter to darker and keeping its hue, so a cloud of particles never looks like the teal estimate."""
+    from matplotlib.colors import to_hex
+
+    cmap = palette.PARTICLE_WEIGHTS
+    assert to_hex(cmap(1.0)) == palette.PREDICTION and to_hex(cmap(0.0)) == palette.PARTICLE_LIGHT
+    shades = [to_hex(cmap(x)) for x in (0.0, 0.25, 0.5, 0.75, 1.0)]
+    lightness = [lab(c)[0] for c in shades]
+    assert lightness == sorted(lightness, reverse=True)  # darker = heavier
+    _, a1, b1 = lab(palette.PREDICTION)
+    for shade in shades:
+        _, a2, b2 = lab(shade)
+        assert a1 * a2 + b1 * b2 >= 0.8 * (a1**2 + b1**2) ** 0.5 * (a2**2 + b2**2) ** 0.5 - 1e-6
+    for vision in VISIONS:
+        assert difference(palette.PARTICLE_LIGHT, palette.ESTIMATE, vision) >= 15
+
+
 def test_line_styles_tell_the_roles_apart():
     lines = {
         "prediction": palette.PREDICTION_LINE,

@@ -1,5 +1,6 @@
 """The particle-cloud picture (chapter 11): the cloud, the estimate, the truth and the ESS strip show the
-run at the step asked for, in place, and a new run (a kidnap) moves them without a new figure."""
+run at the step asked for, in place, and a new run (a kidnap) moves them without a new figure; it and the
+hallway picture draw their particles in the one purple colormap of the palette."""
 
 from __future__ import annotations
 
@@ -7,10 +8,14 @@ from types import SimpleNamespace
 
 import numpy as np
 import pytest
+from matplotlib.colors import to_hex, to_rgba
 from matplotlib.figure import Figure
 
 import kfcourse as kf
+from kfcourse.demos.particle_hallway import ParticleHallwayModel
 from kfcourse.filters.gaussian import ellipse_axes
+from kfcourse.plots import palette
+from kfcourse.plots.particle_hallway import particle_hallway_view, update_particle_hallway
 from kfcourse.plots.particles import DOT_SIZE, RESAMPLE_LINE, cloud_chart, cloud_view, update_cloud_view, weight_shades
 
 pytestmark = pytest.mark.fact  # states facts of seeded runs: repeated under other rounding (tests/facts.py)
@@ -109,3 +114,27 @@ def test_the_dots_take_the_size_asked_for(run):
         for fig in (small, large)
     ]
     assert sizes[0][0] == DOT_SIZE and sizes[1][0] == 30.0
+
+
+def test_both_particle_pictures_shade_the_particles_with_the_palettes_purple(run):
+    """Particles are purple everywhere: the map's cloud and the hallway's dots use palette.PARTICLE_WEIGHTS,
+    pale for the lightest particle to the prediction purple for the heaviest."""
+    cmap = palette.PARTICLE_WEIGHTS
+    assert to_hex(cmap(1.0)) == palette.PREDICTION and to_hex(cmap(0.0)) == palette.PARTICLE_LIGHT
+    cloud = cloud_view(SimpleNamespace(run=run, frame=60))
+    model = ParticleHallwayModel(0, n_particles=200)
+    model.predict()
+    model.update()  # weights before resampling: light and heavy dots
+    hallway = particle_hallway_view(model.doors)
+    update_particle_hallway(hallway, model)
+    for dots in (cloud.cloud, hallway.dots):
+        assert dots.get_cmap() is cmap
+        assert dots.get_clim() == (0.0, 1.0)
+        dots.update_scalarmappable()
+        np.testing.assert_allclose(dots.get_facecolors(), cmap(dots.get_array()))
+    heaviest = hallway.dots.get_facecolors()[np.argmax(hallway.dots.get_array())]
+    np.testing.assert_allclose(heaviest, to_rgba(palette.PREDICTION))
+    legend = cloud.fig.axes[0].get_legend()
+    handles = dict(zip([t.get_text() for t in legend.texts], legend.legend_handles, strict=True))
+    assert to_hex(handles["heavy particle"].get_color()) == palette.PREDICTION
+    assert to_hex(handles["light particle"].get_color()) in {to_hex(cmap(x)) for x in np.linspace(0, 1, 101)}
