@@ -106,6 +106,15 @@ MathJax.Hub.Config({
   displayAlign: "center",
   messageStyle: "none"
 });
+{# The combined config also starts the NativeMML output (unused: HTML-CSS typesets), whose styles
+    declare @font-face rules for MathJax's TeX fonts, which jupyter-server-mathjax does not ship.  The
+    hidden MathML copy kept for screen readers (AssistiveMML) matches them, e.g. \mathcal N is
+    <mi mathvariant="script">, so Chromium asked for fonts/HTML-CSS/TeX/otf/MathJax_Script-Regular.otf
+    and got a 404.  Those rules are dropped before NativeMML adds its styles to the page. -#}
+MathJax.Hub.Register.StartupHook("NativeMML Jax Startup", function () {
+  var styles = MathJax.OutputJax.NativeMML.config.styles;
+  for (var rule in styles) { if (rule.indexOf("@font-face") === 0) { delete styles[rule]; } }
+});
 </script>
 <script src="{{ resources.mathjax_url }}"></script>
 {%- endblock html_head_js_mathjax -%}
