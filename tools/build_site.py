@@ -69,11 +69,11 @@ MATHJAX_URL = "_static/mathjax/MathJax.js?config=TeX-AMS-MML_HTMLorMML-full,Safe
 RECORDING = ROOT / "tools" / "recording.py"
 NBVAL_MARKER = re.compile(r"\A# NBVAL_[A-Z_]+[ \t]*\r?(\n|\Z)")  # a first line that speaks to nbval alone
 
-# Run in the notebook's kernel after a cell that showed a demo: its caption (the first of the
-# demo's rows) and its description (the sentence that says what its picture shows), and for a
-# demo with Run/Pause a recording of its run and the description of the run's last frame, made
-# in one pass over the run by tools/recording.py (``record``) loaded from its file.  The widget
-# is found by the model id of its view.
+# Run in the notebook's kernel after a cell that showed a demo: its caption (whole: the live demo
+# folds its key under the title, a printed page has room for it), its description (the sentence
+# that says what its picture shows), and for a demo with Run/Pause a recording of its run and the
+# description of the run's last frame, made in one pass over the run by tools/recording.py
+# (``record``) loaded from its file.  The widget is found by the model id of its view.
 PROBE = """\
 import base64 as _b64, importlib.util as _iu, ipywidgets as _w
 from IPython.display import display as _display
@@ -84,7 +84,7 @@ _spec.loader.exec_module(_recording)
 _runs = "frame" in _demo.controls
 _run, _last = _recording.record(_demo) if _runs else (None, None)
 _display({{"{mime}": {{
-    "caption": _demo.children[0].value,
+    "caption": _demo.caption,
     "description": _demo.description.text,
     "recording": _b64.b64encode(_run).decode() if _runs else None,
     "last_frame": _last,

@@ -55,6 +55,20 @@ class Description(anywidget.AnyWidget):
     names = traitlets.Dict().tag(sync=True)  # each control's key -> its name: its label, else its tooltip
 
 
+def folded(caption: str) -> str:
+    """The caption as HTML folded under its title: the title and "key" on one line, the rest a
+    click (or Enter) away, so that a 1280x800 laptop shows the picture, its controls and its
+    description at once.  ``caption`` starts with its title in ``<b>...</b>``."""
+    title, bold, key = caption.partition("</b>")
+    if not caption.startswith("<b>") or not bold or not key.strip():
+        raise ValueError(f"caption must start with its title in <b>...</b> and go on after it, got {caption[:40]!r}")
+    return (
+        "<details style='color:#333;font-size:13px;line-height:1.4'>"
+        f"<summary>{title}</b> <span style='color:#555'>key: what the colours and the controls mean</span></summary>"
+        f"{key.strip()}</details>"
+    )
+
+
 class Demo(widgets.VBox):
     """A demo widget: caption, picture, description, controls.
 
@@ -63,7 +77,8 @@ class Demo(widgets.VBox):
     name : str
         Short name; the widget gets the CSS classes ``kf-demo`` and ``kf-demo-<name>``.
     caption : str
-        HTML shown above the picture.
+        HTML shown above the picture, starting with its title in ``<b>...</b>``: the rest, the
+        key to the colours and controls, is folded under the title (:func:`folded`).
     model : object
         The demo's state.  With ``frames`` it needs an integer attribute ``frame``.
     renderer : FigureRenderer
@@ -165,7 +180,8 @@ class Demo(widgets.VBox):
         self.description = Description(
             names={key: c.description or c.tooltip or key for key, c in self.controls.items()}
         )
-        cap = widgets.HTML(f"<div style='color:#333;font-size:13px;line-height:1.4'>{caption}</div>")
+        self.caption = caption
+        cap = widgets.HTML(folded(caption))
         cap.add_class("kf-caption")
         if layout is None:
             layout = [] if beside is not None else list(self.controls)
@@ -308,6 +324,8 @@ class Demo(widgets.VBox):
         frame = self.controls["frame"]
         if frame.value >= frame.max:
             frame.value = frame.min  # Run at the end starts again
+        # The sentence describes a picture at rest: while Run plays it says so, never a past step as the one shown.
+        self.description.text = running_sentence(frame.value)
         self._task = self._loop.create_task(self._run(self._loop))
 
     async def _run(self, loop: asyncio.AbstractEventLoop) -> None:
@@ -323,6 +341,12 @@ class Demo(widgets.VBox):
                 start, t0 = frame.value, loop.time()
         self._task = None
         self.controls["play"].value = False
+
+
+def running_sentence(start: int) -> str:
+    """What the description says while Run plays: the picture moves too fast to describe each step,
+    so it names the step Run started from and when the sentence returns."""
+    return f"Run is playing from step {start}; press Pause, or wait for the last step, to read the step shown."
 
 
 def slider(

@@ -5,7 +5,8 @@
 // reader reads each new state once.  The same sentence is the picture's alt text.  It also gives
 // the demo's ipywidgets controls what they lack: every slider its label as its name and the shown
 // value as the value read out (a log slider's handle would say the exponent), every toggle and
-// choice button its pressed state, and a group of choice buttons a name.
+// choice button its pressed state, and a group of choice buttons a name.  A slider's readout is
+// taken out of the Tab order: the handle is the control, and it announces the readout's value.
 
 function setAttr(el, name, value) {
   if (el.getAttribute(name) !== value) el.setAttribute(name, value);
@@ -25,6 +26,7 @@ function label(demo, text, names) {
       if (readout) {
         setAttr(handle, "aria-valuetext", readout.textContent.trim());
         setAttr(readout, "aria-label", `${name}, value`);
+        setAttr(readout, "tabindex", "-1"); // text the handle announces, typed into with a click: no Tab stop
       }
     }
     if (control.classList.contains("widget-toggle-buttons")) {

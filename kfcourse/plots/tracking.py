@@ -64,7 +64,7 @@ class TrackerView:
         ]
 
 
-def tracker_view(run, width: float = 8.0, height: float = 4.4) -> TrackerView:
+def tracker_view(run, width: float = 8.0, height: float = 4.25) -> TrackerView:
     """The map of a turning target's run: its true path, and the artists a filter's run moves.
 
     The map spans the true path with a margin of ``MAP_MARGIN``, at one scale along both

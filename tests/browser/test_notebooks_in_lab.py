@@ -5,8 +5,9 @@ wait for the kernel to be idle, Run All, then check that no cell wrote to stderr
 that every widget really rendered, and, for each ``.kf-demo`` (see
 ``kfcourse/demos/_base.py`` for the DOM contract):
 
-- a picture and a caption; the picture and all of its controls fit the notebook area at
-  once (at most ``LAYOUT_MAX_PX`` tall), and the picture is never shown larger than drawn;
+- a picture and a caption; the whole demo (caption, picture, controls, readout and
+  description) fits the notebook area at once (at most ``LAYOUT_MAX_PX`` tall), and the
+  picture is never shown larger than drawn;
 - every slider (End, Home, then ``ARROW_PRESSES`` ArrowRight presses), every button, every
   option of every choice and the Run/Pause animation change the picture;
 - after every control the crisp picture comes to rest (two pixels per CSS pixel), while
@@ -18,8 +19,9 @@ that every widget really rendered, and, for each ``.kf-demo`` (see
 - for assistive technology: the picture's alt text is the description under it, in a polite
   live region; every slider is named by its label and announces the value its readout shows
   (also after it moved); every toggle and choice button exposes whether it is pressed, every
-  group of choice buttons has a name; a control reached with Tab shows a focus ring at least
-  ``FOCUS_MIN_PX`` wide at ``FOCUS_MIN_CONTRAST`` against the page or better.
+  group of choice buttons has a name; every control reached with Tab shows a focus ring at
+  least ``FOCUS_MIN_PX`` wide at ``FOCUS_MIN_CONTRAST`` against the page or better, which no
+  box around it clips, and a slider's readout is no Tab stop.
 
 After the demos, axe-core checks the chapter's own content (its rendered Markdown and every
 output) against the WCAG 2.1 A and AA rules: no violation.
@@ -77,9 +79,10 @@ from tests.plots.colour_vision import contrast
 
 pytestmark = pytest.mark.browser
 
-LAYOUT_MAX_PX = 680  # the picture and its controls, caption aside: what a 1280x800 window leaves the notebook
+LAYOUT_MAX_PX = 680  # a whole demo, caption to description: what a 1280x800 window leaves the notebook
 FOCUS_MIN_PX = 2  # the focus ring's width (WCAG 2.4.11/2.4.13: a visible indicator)
 FOCUS_MIN_CONTRAST = 3.0  # the focus ring against the page (WCAG 1.4.11, non-text contrast)
+MAX_TAB_STOPS = 40  # more in one demo means Tab is caught in it
 
 # What a screen reader is told of a demo: the picture's alt text and the description under it,
 # each slider's name and spoken value against its label and readout, each toggle's pressed
@@ -102,29 +105,47 @@ JS_ACCESSIBLE = """(d) => ({
     })),
 })"""
 
-# The focused element's outline, and the colour of the page behind it.
+# The focused element's outline, the colour of the page behind it, and the first box around it
+# (up to the demo's own) that would clip the ring: one whose overflow is not visible and whose
+# inside the ring (the element's box grown by the outline's offset and width) leaves.
 JS_FOCUS_RING = """() => {
     const e = document.activeElement;
     const style = getComputedStyle(e);
+    const demo = e.closest('.kf-demo');
+    const r = e.getBoundingClientRect();
+    const reach = Math.max(parseFloat(style.outlineOffset) + parseFloat(style.outlineWidth), 0);
+    let clippedBy = null;
+    for (let a = e.parentElement; demo && a && demo.contains(a); a = a.parentElement) {
+        const s = getComputedStyle(a);
+        if (s.overflowX === 'visible' && s.overflowY === 'visible') continue;
+        const b = a.getBoundingClientRect();
+        const left = b.left + a.clientLeft, top = b.top + a.clientTop;
+        if (r.left - reach < left - 0.5 || r.top - reach < top - 0.5
+            || r.right + reach > left + a.clientWidth + 0.5 || r.bottom + reach > top + a.clientHeight + 0.5) {
+            clippedBy = a.className.toString().slice(0, 60);
+            break;
+        }
+    }
     return {
         what: e.outerHTML.slice(0, 80), style: style.outlineStyle,
         width: parseFloat(style.outlineWidth), color: style.outlineColor,
-        inDemo: !!e.closest('.kf-demo'),
+        inDemo: !!demo, readout: e.classList.contains('widget-readout'), clippedBy,
     };
 }"""
 
-# The demo's picture and controls (every child but the caption): their height, the height of the
-# notebook area that shows them, how far any of them reaches past the output's right edge or
-# overflows its box (a scroll bar), and the picture's CSS width against its pixel width.
+# The demo's whole outermost element (caption, picture, controls, readout, description): its
+# height and its caption's, the height of the notebook area that shows them, how far any part
+# reaches past the output's right edge or overflows its box (a scroll bar), and the picture's
+# CSS width against its pixel width.
 JS_LAYOUT = """(d) => {
-    const parts = Array.from(d.children).filter(c => !c.classList.contains('kf-caption'));
-    const rects = parts.map(c => c.getBoundingClientRect()).filter(r => r.height > 0);
     const img = d.querySelector('img.kf-figure');
+    const caption = d.querySelector('.kf-caption');
     const area = d.closest('.jp-WindowedPanel-outer');
     const output = d.closest('.jp-OutputArea-output') || d.parentElement;
     const items = d.querySelectorAll('img, .widget-slider, .widget-button, .widget-toggle-buttons, .widget-html');
     return {
-        height: Math.max(...rects.map(r => r.bottom)) - Math.min(...rects.map(r => r.top)),
+        height: d.getBoundingClientRect().height,
+        caption: caption ? caption.getBoundingClientRect().height : 0,
         area: area ? area.clientHeight : null,
         overflow: Math.max(
             ...Array.from(items).map(e => e.getBoundingClientRect().right - output.getBoundingClientRect().right),
@@ -229,22 +250,28 @@ def _check_accessible(demo, label: str, problems: list[str]) -> None:
 
 
 def _check_focus_ring(page, demo, label: str, problems: list[str]) -> None:
-    """A control reached with the keyboard shows a ring of at least FOCUS_MIN_PX at FOCUS_MIN_CONTRAST."""
-    first = demo.locator(".noUi-handle, button").first
+    """Every Tab stop of the demo shows a ring of at least FOCUS_MIN_PX at FOCUS_MIN_CONTRAST that no
+    box around it clips, and a slider's readout (text the handle announces) is no Tab stop."""
+    first = demo.locator(".kf-caption summary, .noUi-handle, button").first
     first.focus()
-    page.keyboard.press("Tab")
-    ring = page.evaluate(JS_FOCUS_RING)
-    if not ring["inDemo"]:
-        first.focus()
-        page.keyboard.press("Shift+Tab")
+    page.keyboard.press("Tab")  # to the next stop and back: the focus now comes from the keyboard
+    page.keyboard.press("Shift+Tab")
+    for _ in range(MAX_TAB_STOPS):
         ring = page.evaluate(JS_FOCUS_RING)
+        if not ring["inDemo"]:
+            break
+        if ring["readout"]:
+            problems.append(f"{label}: Tab stops at a slider's readout {ring['what']!r}: it is text, not a control")
+        if ring["style"] in ("none", "hidden") or ring["width"] < FOCUS_MIN_PX:
+            problems.append(f"{label}: focus on {ring['what']!r} shows a {ring['width']} px {ring['style']} outline")
+        elif contrast(css_hex(ring["color"]), "#ffffff") < FOCUS_MIN_CONTRAST:
+            problems.append(f"{label}: the focus ring {ring['color']} has too little contrast against the page")
+        elif ring["clippedBy"] is not None:
+            problems.append(f"{label}: the focus ring of {ring['what']!r} is clipped by {ring['clippedBy']!r}")
+        page.keyboard.press("Tab")
+    else:
+        problems.append(f"{label}: more than {MAX_TAB_STOPS} Tab stops, or Tab never leaves the demo")
     page.keyboard.press("Escape")
-    if ring["style"] in ("none", "hidden") or ring["width"] < FOCUS_MIN_PX:
-        problems.append(f"{label}: focus on {ring['what']!r} shows a {ring['width']} px {ring['style']} outline")
-        return
-    ratio = contrast(css_hex(ring["color"]), "#ffffff")
-    if ratio < FOCUS_MIN_CONTRAST:
-        problems.append(f"{label}: the focus ring {ring['color']} has {ratio:.2f}:1 against the page")
 
 
 def css_hex(css: str) -> str:
@@ -254,12 +281,15 @@ def css_hex(css: str) -> str:
 
 
 def _check_layout(demo, label: str, problems: list[str]) -> None:
-    """The picture and its controls fit the notebook area at once, nothing sticks out on the right,
+    """The whole demo, caption to description, fits the notebook area at once, nothing sticks out on the right,
     and the picture is not enlarged."""
     box = demo.evaluate(JS_LAYOUT)
     room = min(LAYOUT_MAX_PX, box["area"] or LAYOUT_MAX_PX)
     if box["height"] > room:
-        problems.append(f"{label}: picture and controls are {box['height']:.0f} px tall; the laptop shows {room} px")
+        problems.append(
+            f"{label}: the demo is {box['height']:.0f} px tall (its caption {box['caption']:.0f} px); "
+            f"the laptop shows {room} px"
+        )
     if box["overflow"] > 1:
         problems.append(f"{label}: the picture or a control sticks out {box['overflow']:.0f} px: a scroll bar")
     if box["shown"] > box["natural"] / 2 + 0.5:

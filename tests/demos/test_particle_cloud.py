@@ -24,7 +24,8 @@ from tests.demos.particle_drive import model_with
 
 pytestmark = pytest.mark.fact  # states facts of seeded runs: repeated under other rounding (tests/facts.py)
 
-LAPTOP_PX = 680  # a 1280x800 laptop: picture and controls (caption aside) within 680 px
+LAPTOP_PX = 680  # a 1280x800 laptop: the whole demo within 680 px
+CAPTION_PX, DESCRIPTION_PX = 19, 25  # the caption folded under its title, the description: one line each
 
 
 def make(seed=0):
@@ -150,7 +151,7 @@ def test_the_column_fits_a_laptop():
     assert 3 * SCHEME_BUTTON + 3 * 4 <= COLUMN_WIDTH and SCHEME_BUTTON >= 100  # three whole names and their gaps
     assert len(scheme.options) == 3
     width, height = demo.renderer.fig.canvas.get_width_height()
-    assert IMAGE_WIDTH * height / width <= LAPTOP_PX  # the picture shown IMAGE_WIDTH wide
+    assert CAPTION_PX + IMAGE_WIDTH * height / width + DESCRIPTION_PX <= LAPTOP_PX  # the picture IMAGE_WIDTH wide
     text = readout(demo).replace("<br>", "\n")
     lines = sum(1 + len(line) // 60 for line in text.split("\n"))  # HTML included: more than it shows
-    assert 5 * 34 + lines * 20 <= LAPTOP_PX  # five rows of controls, the readout's lines at 13 px x 1.5
+    assert CAPTION_PX + 5 * 34 + lines * 20 <= LAPTOP_PX  # five rows of controls, the readout's lines at 13 px x 1.5

@@ -100,4 +100,4 @@ def test_fits_a_laptop():
     demo = kf.demos.particle_hallway(seed=0)
     width, height = demo.renderer.fig.get_size_inches()
     shown = min(demo.display_width, 848) * height / width  # px tall at the 848 px output
-    assert shown + 2 * 40 + 60 <= 680  # two control rows and the caption
+    assert shown + 2 * 40 + 60 <= 680  # two control rows, the folded caption and the description

@@ -21,13 +21,14 @@ from tests.demos.layout import readout, widgets_in
 
 pytestmark = pytest.mark.fact  # states facts of seeded runs: repeated under other rounding (tests/facts.py)
 
-# A 1280x800 laptop: the demo's picture and controls (caption aside) within 680 px, in an output 848 px wide
-# (what tests/browser/test_notebooks_in_lab.py measures in JupyterLab).
+# A 1280x800 laptop: the whole demo (its folded caption, picture, description and controls) within 680 px, in an
+# output 848 px wide (what tests/browser/test_notebooks_in_lab.py measures in JupyterLab).
 LAPTOP_PX, OUTPUT_PX = 680, 848
 ROW_PX = 34  # a row of sliders, buttons or toggles: 28 px high with its margins, rounded up
 READOUT_FONT_PX, READOUT_LINE = 13, 1.5  # the readouts' font size and line height, rounded up
 READOUT_MARGIN_PX = 4
 DESCRIPTION_LINE, DESCRIPTION_MARGIN_PX = 1.4, 6  # the description under the picture: one line (describe.css)
+CAPTION_PX = READOUT_FONT_PX * DESCRIPTION_LINE  # the caption folded under its title: one line
 
 
 def make(seed=0):
@@ -220,13 +221,14 @@ def readout_lines(text: str) -> int:
 
 
 def estimated_height(demo, lines: int) -> float:
-    """Picture + controls (CSS px): the picture at the demo's width and its own shape, its one-line
-    description, a readout of ``lines`` lines, and one ROW_PX per row of controls."""
+    """The whole demo (CSS px): its folded caption, the picture at the demo's width and its own shape,
+    its one-line description, a readout of ``lines`` lines, and one ROW_PX per row of controls."""
     width, height = Image.open(io.BytesIO(bytes(demo.image.value))).size
     rows = [c for c in demo.children[2:] if c is not demo.description and "kf-readout" not in c._dom_classes]
     readout_px = lines * READOUT_FONT_PX * READOUT_LINE + READOUT_MARGIN_PX
     description_px = READOUT_FONT_PX * DESCRIPTION_LINE + DESCRIPTION_MARGIN_PX
-    return min(demo.display_width, OUTPUT_PX) * height / width + description_px + readout_px + len(rows) * ROW_PX
+    picture_px = min(demo.display_width, OUTPUT_PX) * height / width
+    return CAPTION_PX + picture_px + description_px + readout_px + len(rows) * ROW_PX
 
 
 def rows_fit_the_output(demo) -> bool:
