@@ -15,7 +15,7 @@ import threading
 from PIL import Image
 
 import kfcourse as kf
-from kfcourse.demos._base import FRAME_INTERVAL, REST_AFTER
+from kfcourse.demos._base import FRAME_INTERVAL, REST_AFTER, running_sentence
 
 
 def watch(demo) -> list[tuple[str, int, int]]:
@@ -97,3 +97,24 @@ def test_run_and_pause_from_another_thread():
     assert formats[-1] == "jpeg" and set(formats[:-1]) == {"webp"} and len(formats) >= 6
     assert {thread for *_, thread in sent} == {threading.get_ident()}
     assert demo.controls["play"].description == "Run"
+
+
+def test_while_run_plays_the_sentence_says_so_and_pause_brings_back_the_step_shown():
+    seen = {}
+
+    async def scenario(demo, sent):
+        demo.controls["frame"].value = 7
+        await asyncio.sleep(REST_AFTER + 0.2)
+        seen["at rest"] = demo.description.text
+        demo.controls["play"].value = True
+        await asyncio.sleep(6 * FRAME_INTERVAL)
+        seen["running"] = demo.description.text
+        seen["moved"] = demo.controls["frame"].value > 7
+        demo.controls["play"].value = False
+        await asyncio.sleep(0.05)
+        seen["paused"] = demo.description.text
+
+    demo, _ = in_kernel(scenario)
+    assert seen["moved"] and seen["running"] == running_sentence(7)
+    assert seen["at rest"] != seen["running"]
+    assert seen["paused"] == demo.model.describe() != seen["at rest"]  # the step Pause stopped at
