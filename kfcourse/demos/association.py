@@ -2,6 +2,8 @@
 
 from __future__ import annotations
 
+from dataclasses import dataclass
+
 import ipywidgets as widgets
 import numpy as np
 
@@ -16,6 +18,30 @@ GATE_RANGE = (1.0, 6.0)
 LEG_OPTIONS = ("none", "a pedestrian's leg")
 IMAGE_WIDTH = 500  # CSS px at most: the picture beside its controls fits a laptop's notebook (848 px wide)
 COLUMN_WIDTH = 340  # CSS px: the controls and the readout beside the picture
+
+
+@dataclass(frozen=True)
+class ReadingFacts:
+    """One reading of the scan: where the gate put it."""
+
+    index: int  # its place in the scan
+    leg: bool  # the pedestrian's leg, not a landmark's reading
+    landmark: int  # the landmark it was matched to; if rejected, its nearest
+    distance: float  # its Mahalanobis distance from that landmark's predicted reading (σ)
+    accepted: bool  # inside the gate: used in the update
+
+
+@dataclass(frozen=True)
+class ScanFacts:
+    """What the description and the readout say about the scan, computed once by :meth:`AssociationModel.facts`."""
+
+    seed: int
+    gate: float  # γ (σ)
+    readings: tuple[ReadingFacts, ...]
+    passed: int  # readings inside the gate
+    error_before: float  # position error of the prediction (m)
+    error_after: float  # of the estimate after the accepted readings (m)
+    outside: float  # share of true readings the gate rejects: P(chi^2 with 2 dof > gamma^2)
 
 
 class AssociationModel:
@@ -65,34 +91,52 @@ class AssociationModel:
         j = j if j >= 0 else int(np.argmin(d))
         return j, float(d[j])
 
+    def facts(self) -> ScanFacts:
+        """Every reading's landmark, distance and verdict, the count that passes, and the errors before and
+        after: what the description and the readout both say."""
+        res, source = self.result, self.scan.source
+        readings = []
+        for k in range(res.match.size):
+            landmark, distance = self.nearest(k)
+            leg, accepted = bool(source[k] < 0), bool(res.accepted[k])
+            readings.append(ReadingFacts(k, leg, landmark, distance, accepted))
+        return ScanFacts(
+            seed=self.seed,
+            gate=self.gate,
+            readings=tuple(readings),
+            passed=int(res.accepted.sum()),
+            error_before=res.error_bar,
+            error_after=res.error,
+            outside=1.0 - self.kept(),
+        )
+
     def describe(self) -> str:
         """What the picture shows: how many readings pass the gate, what became of the leg's reading,
         and how far the accepted ones move the estimate from the truth."""
-        res, source = self.result, self.scan.source
-        passed, total = int(res.accepted.sum()), res.match.size
+        f = self.facts()
         notes = []
-        lost = np.flatnonzero((source >= 0) & ~res.accepted)  # landmarks' own readings the gate turned away
-        if lost.size > 2:
-            notes.append(f"{lost.size} landmark readings rejected")
+        lost = [r for r in f.readings if not r.leg and not r.accepted]  # landmarks' own readings turned away
+        if len(lost) > 2:
+            notes.append(f"{len(lost)} landmark readings rejected")
         else:  # one or two: which, and how far outside the gate
-            for k in lost:
-                j, d = self.nearest(k)
-                notes.append(f"reading {k} rejected at {d:.2f}σ from landmark {j}")
-        if self.leg:
-            k = int(np.flatnonzero(source < 0)[0])
-            j, d = self.nearest(k)
-            taken = (
-                f"taken for landmark {j} at {d:.2f}σ"
-                if res.match[k] >= 0
-                else f"rejected at {d:.2f}σ from landmark {j}"
-            )
-            notes.append(f"the pedestrian's leg {taken}")
+            for r in lost:
+                notes.append(f"reading {r.index} rejected at {r.distance:.2f}σ from landmark {r.landmark}")
+        for r in f.readings:
+            if r.leg:
+                taken = (
+                    f"taken for landmark {r.landmark} at {r.distance:.2f}σ"
+                    if r.accepted
+                    else f"rejected at {r.distance:.2f}σ from landmark {r.landmark}"
+                )
+                notes.append(f"the pedestrian's leg {taken}")
         said = f" ({', '.join(notes)})" if notes else ""
-        if passed == 0:
-            effect = f"the estimate stays the prediction, {res.error_bar:.2f} m from the truth"
+        if f.passed == 0:
+            effect = f"the estimate stays the prediction, {f.error_before:.2f} m from the truth"
         else:
-            effect = f"the update takes the position error from {res.error_bar:.2f} m to {res.error:.2f} m"
-        return f"Scan {self.seed}, gate γ = {self.gate:.1f}σ: {passed} of {total} readings pass{said}, and {effect}."
+            effect = f"the update takes the position error from {f.error_before:.2f} m to {f.error_after:.2f} m"
+        return (
+            f"Scan {f.seed}, gate γ = {f.gate:.1f}σ: {f.passed} of {len(f.readings)} readings pass{said}, and {effect}."
+        )
 
 
 CELL = "<td style='padding:0 10px 0 0'>{}</td>"
@@ -100,20 +144,18 @@ CELL = "<td style='padding:0 10px 0 0'>{}</td>"
 
 def _readout(model: AssociationModel) -> str:
     """The readout beside the picture: each reading's nearest landmark, its distance, the verdict; the errors."""
-    scan, res = model.scan, model.result
+    f = model.facts()
     rows = ["".join(CELL.format(x) for x in ("reading", "nearest", "d (σ)", ""))]
-    for k, (d, j) in enumerate(zip(res.distances, res.match, strict=True)):
-        nearest = int(np.argmin(d))
-        name = "the leg" if scan.source[k] < 0 else f"reading {k}"
-        verdict = f"→ landmark {j}" if j >= 0 else "<b>rejected</b>"
-        rows.append("".join(CELL.format(x) for x in (name, nearest, f"{d[nearest]:.2f}", verdict)))
+    for r in f.readings:
+        name = "the leg" if r.leg else f"reading {r.index}"
+        verdict = f"→ landmark {r.landmark}" if r.accepted else "<b>rejected</b>"
+        rows.append("".join(CELL.format(x) for x in (name, r.landmark, f"{r.distance:.2f}", verdict)))
     table = "<table style='font-size:12px;margin:4px 0'>" + "".join(f"<tr>{row}</tr>" for row in rows) + "</table>"
     return (
-        f"<div style='font-size:13px;line-height:1.5'>Scan {model.seed}. Gate γ = {model.gate:.1f}σ: a true reading "
-        "falls outside it "
-        f"{100 * (1 - model.kept()):.2g} % of the time. {table}"
-        f"Position error: predicted <b>{res.error_bar:.2f} m</b>; corrected with {int(res.accepted.sum())} of "
-        f"{res.match.size} readings <b style='color:{palette.ESTIMATE_TEXT}'>{res.error:.2f} m</b>.</div>"
+        f"<div style='font-size:13px;line-height:1.5'>Scan {f.seed}. Gate γ = {f.gate:.1f}σ: a true reading "
+        f"falls outside it {100 * f.outside:.2g} % of the time. {table}"
+        f"Position error: predicted <b>{f.error_before:.2f} m</b>; corrected with {f.passed} of "
+        f"{len(f.readings)} readings <b style='color:{palette.ESTIMATE_TEXT}'>{f.error_after:.2f} m</b>.</div>"
     )
 
 

@@ -3,6 +3,7 @@
 from __future__ import annotations
 
 import html
+from dataclasses import dataclass
 
 import ipywidgets as widgets
 import numpy as np
@@ -25,6 +26,32 @@ COLUMN_WIDTH = 340  # CSS px: the controls and the readout beside the picture
 BUTTONS = ["dropout", "kidnap", "new"]  # one row of the column: 105 + 125 + 100 px
 GATE = 4.0  # the filter rejects a reading more than 4 standard deviations from its prediction (chapter 8)
 SLIDER_FORMAT = ".2g"  # the readout of the four log sliders; the description writes their values the same way
+
+
+@dataclass(frozen=True)
+class LoopFacts:
+    """What the description and the readout say about the step shown, computed once by :meth:`LoopModel.facts`.
+
+    "Inside" is always the drawn 2σ ellipse (a squared Mahalanobis distance, the position NEES, of at most
+    ``NSIG**2``); the share inside the 3σ ellipse is named as such."""
+
+    step: int
+    t: float  # s
+    blind: bool  # the sensor is blind at this step
+    sight_back: bool  # the first step after a blind stretch: the nearest landmark only
+    used: int  # readings the filter used
+    rejected: int  # readings the gate rejected
+    kidnapped: bool  # the true robot has been carried off, at this step or before
+    error: float  # distance of the estimate from the truth (m)
+    prediction_error: float  # the same before this step's readings (m)
+    area_before: float  # the 1σ area before the readings (m²)
+    area_after: float  # and after them (m²)
+    shrink: float | None  # area_after / area_before when readings were used, else None
+    inside: bool  # the truth is inside the drawn 2σ ellipse
+    share_inside: float  # share of the steps so far (0 to this one) with the truth inside the 2σ ellipse
+    share_inside_3sigma: float  # the same for the 3σ ellipse
+    mean_nees: float  # the position NEES averaged over the whole lap
+    verdict: str  # "honest", "timid" or "over-confident", from ``mean_nees``
 
 
 class LoopModel:
@@ -137,41 +164,57 @@ class LoopModel:
         before = np.pi * np.sqrt(max(np.linalg.det(self.run.Sig_bar[self.frame, :2, :2]), 0.0))  # pi sqrt(det)
         return float(before), float(self.run.area[self.frame])
 
-    def share_inside(self) -> float:
-        """Share of the steps so far with the true position inside the 3-sigma ellipse (0 to 1)."""
-        return float(np.mean(self.run.inside[: self.frame + 1]))
+    def facts(self) -> LoopFacts:
+        """The facts of the step shown, which the description and the readout both say."""
+        run, k = self.run, self.frame
+        used, rejected = int(np.count_nonzero(run.used[k])), int(np.count_nonzero(run.rejected[k]))
+        before, after = self.areas()
+        nees_so_far = run.nees[: k + 1]
+        mean_nees, verdict = run.honesty()
+        return LoopFacts(
+            step=k,
+            t=float(run.t[k]),
+            blind=self.is_blind(),
+            sight_back=self.blind is not None and k == self.blind[1],
+            used=used,
+            rejected=rejected,
+            kidnapped=self.kidnap is not None and k >= self.kidnap,
+            error=float(run.error[k]),
+            prediction_error=self.prediction_error(),
+            area_before=before,
+            area_after=after,
+            shrink=after / before if used and before > 0 else None,
+            inside=bool(run.nees[k] <= NSIG**2),  # the drawn ellipse: a Mahalanobis distance of NSIG
+            share_inside=float(np.mean(nees_so_far <= NSIG**2)),
+            share_inside_3sigma=float(np.mean(run.inside[: k + 1])),  # the run record's inside: the 3σ ellipse
+            mean_nees=mean_nees,
+            verdict=verdict,
+        )
 
     def describe(self) -> str:
         """What the picture shows: the run and step, what the filter saw and did, its error (and the
         prediction's, when it used readings), its 1σ area, whether the truth is inside the drawn 2σ ellipse;
         then the settings that differ from an honest filter in the usual world, and whether the lap's NEES
         calls it honest."""
-        run, k = self.run, self.frame
-        used, rejected = int(np.count_nonzero(run.used[k])), int(np.count_nonzero(run.rejected[k]))
+        f = self.facts()
         name = "your filter" if self.filter == YOURS and self.failure is None else f"the {self.run.filter.upper()}"
         notes = ["your filter failed: the course's EKF is shown"] if self.failure else []
         if self.kidnap is not None:
-            notes.append(f"{'robot kidnapped' if k >= self.kidnap else 'a kidnap comes'} at step {self.kidnap}")
-        if self.is_blind():
+            notes.append(f"{'robot kidnapped' if f.kidnapped else 'a kidnap comes'} at step {self.kidnap}")
+        if f.blind:
             did = f"{name} sees nothing (the sensor is blind)"
         else:
-            did = f"{name} uses {used or 'no'} reading{'s' if used != 1 else ''}"
-            did += f", rejects {rejected}" if rejected else ""
-            did += " (sight back: the nearest landmark only)" if self.blind and k == self.blind[1] else ""
-        off = f"is {metres(run.error[k], '.3f')} m off"
-        if used:  # the readings moved the estimate: from where
-            off += f" ({metres(self.prediction_error(), '.3f')} m before the reading{'s' if used != 1 else ''})"
-        before, after = self.areas()
-        area = f"its 1σ area {after:.3g} m²" + (f" ({shrink(before, after)})" if used and before > 0 else "")
-        inside = "inside" if run.nees[k] <= NSIG**2 else "outside"  # the drawn ellipse: a Mahalanobis distance of NSIG
+            did = f"{name} uses {f.used or 'no'} reading{'s' if f.used != 1 else ''}"
+            did += f", rejects {f.rejected}" if f.rejected else ""
+            did += " (sight back: the nearest landmark only)" if f.sight_back else ""
+        off = f"is {metres(f.error, '.3f')} m off"
+        if f.used:  # the readings moved the estimate: from where
+            off += f" ({metres(f.prediction_error, '.3f')} m before the reading{'s' if f.used != 1 else ''})"
+        area = f"its 1σ area {f.area_after:.3g} m²" + (f" ({shrink(f.shrink)})" if f.shrink is not None else "")
+        inside = "inside" if f.inside else "outside"
         said = f" ({'; '.join(notes)})" if notes else ""
-        now = f"Run {self.seed}, step {k}{said}: {did} and {off}; {area}, the truth {inside} its 2σ ellipse."
-        nees, verdict = run.honesty()
-        if not np.isfinite(nees):
-            nees_text = "unbounded"
-        else:  # two digits, written out: 2.2, 170, 160,000
-            nees_text = f"{nees:.2g}" if nees < 100 else f"{float(f'{nees:.2g}'):,.0f}"
-        lap = f"over this lap the filter is {verdict} (mean NEES {nees_text})."
+        now = f"Run {self.seed}, step {f.step}{said}: {did} and {off}; {area}, the truth {inside} its 2σ ellipse."
+        lap = f"over this lap the filter is {f.verdict} (mean NEES {nees_text(f.mean_nees)})."
         changed = self.changed()
         return f"{now} With {changed}, {lap}" if changed else f"{now} {lap[0].upper()}{lap[1:]}"
 
@@ -207,41 +250,49 @@ def metres(value: float, fmt: str) -> str:
     return shown(value, fmt) if value < 1e3 else "over 1000"
 
 
-def shrink(before: float, after: float) -> str:
+def shrink(factor: float) -> str:
     """How the readings scaled the 1σ area, in two digits however small: "×0.065", "×0.0022"."""
-    return f"×{after / before:#.2g}"
+    return f"×{factor:#.2g}"
+
+
+def nees_text(nees: float) -> str:
+    """A mean NEES as the description and the readout write it: two digits, written out (2.2, 170, 160,000),
+    or "unbounded" (a flat ellipse the truth left)."""
+    if not np.isfinite(nees):
+        return "unbounded"
+    return f"{nees:.2g}" if nees < 100 else f"{float(f'{nees:.2g}'):,.0f}"
 
 
 def _readout(model: LoopModel) -> str:
     """The lines beside the picture: what the filter did at the step shown, its error, its doubt, its honesty."""
-    run, k = model.run, model.frame
-    used, rejected = int(np.count_nonzero(run.used[k])), int(np.count_nonzero(run.rejected[k]))
-    if model.is_blind():
+    f = model.facts()
+    if f.blind:
         sight = "<b>sensor blind</b>"
     else:
-        back = " (sight back: the nearest landmark only)" if model.blind and k == model.blind[1] else ""
-        sight = f"uses {used} reading{'s' if used != 1 else ''}{back}"
-        if rejected:
+        back = " (sight back: the nearest landmark only)" if f.sight_back else ""
+        sight = f"uses {f.used} reading{'s' if f.used != 1 else ''}{back}"
+        if f.rejected:
             sight += (
-                f", <span style='color:{palette.MEASUREMENT_TEXT}'><b>rejects {rejected}</b></span> (outside the gate)"
+                f", <span style='color:{palette.MEASUREMENT_TEXT}'><b>rejects {f.rejected}</b></span> "
+                "(outside the gate)"
             )
-    before, after = model.areas()
-    shrink_text = f" ({shrink(before, after)})" if before > 0 else ""
-    inside = "inside" if run.inside[k] else "<b>outside</b>"
-    kidnapped = f"<br><b>kidnapped</b> at step {model.kidnap}" if model.kidnap is not None else ""
-    nees, verdict = run.honesty()
-    error = f"{run.error[k]:.3f}" if run.error[k] < 1e3 else f"{run.error[k]:.3g}"  # a student's step may fly off
-    nees_text = f"{nees:.2g}" if np.isfinite(nees) else "unbounded (a flat ellipse the truth left)"
+    shrink_text = f" ({shrink(f.shrink)})" if f.shrink is not None else ""
+    inside = "inside" if f.inside else "<b>outside</b>"
+    kidnapped = ""
+    if model.kidnap is not None:
+        kidnapped = f"<br>{'<b>kidnapped</b>' if f.kidnapped else 'a kidnap comes'} at step {model.kidnap}"
+    nees = nees_text(f.mean_nees) + ("" if np.isfinite(f.mean_nees) else " (a flat ellipse the truth left)")
     failure = html.escape(model.failure or "")  # the student's own message, shown as text
     failed = f"<b>Your filter failed</b>: {failure}. Shown: the course's EKF.<br>" if failure else ""
     return (
-        f"<div style='font-size:13px;line-height:1.5'>{failed}step {k}, t = {run.t[k]:.1f} s, run {model.seed}: "
+        f"<div style='font-size:13px;line-height:1.5'>{failed}step {f.step}, t = {f.t:.1f} s, run {model.seed}: "
         f"{sight}{kidnapped}<br>"
-        f"<span style='color:{palette.ESTIMATE_TEXT}'>position error {error} m</span><br>"
-        f"1σ area: <span style='color:{palette.PREDICTION_TEXT}'>{before:.3g}</span> before the readings → "
-        f"<span style='color:{palette.ESTIMATE_TEXT}'>{after:.3g} m²</span>{shrink_text}<br>"
-        f"truth {inside} the 3σ ellipse ({model.share_inside():.0%} of steps so far)<br>"
-        f"this lap, the filter is <b>{verdict}</b>: mean NEES {nees_text} "
+        f"<span style='color:{palette.ESTIMATE_TEXT}'>position error {metres(f.error, '.3f')} m</span><br>"
+        f"1σ area: <span style='color:{palette.PREDICTION_TEXT}'>{f.area_before:.3g}</span> before the readings → "
+        f"<span style='color:{palette.ESTIMATE_TEXT}'>{f.area_after:.3g} m²</span>{shrink_text}<br>"
+        f"truth {inside} the 2σ ellipse; so far inside it at {f.share_inside:.0%} of steps, "
+        f"inside 3σ at {f.share_inside_3sigma:.0%}<br>"
+        f"this lap, the filter is <b>{f.verdict}</b>: mean NEES {nees} "
         f"(honest: {HONEST_NEES[0]:g} to {HONEST_NEES[1]:g}, 2 on average)</div>"
     )
 

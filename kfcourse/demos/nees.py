@@ -3,6 +3,8 @@ of a few hundred tracks against its 95 % chi-square band."""
 
 from __future__ import annotations
 
+from dataclasses import dataclass
+
 import ipywidgets as widgets
 import numpy as np
 
@@ -20,6 +22,21 @@ Y_RANGE = (0.5, 500.0)  # log axis: from timid to badly over-confident
 DISPLAY_WIDTH = 848  # CSS px: a laptop's notebook width
 FACTOR_FORMAT = ".3g"  # the factor slider's readout
 NOISE_NAMES = {"R": "process noise", "Q": "measurement noise"}
+
+
+@dataclass(frozen=True)
+class NeesFacts:
+    """What the description and the readout say, computed once by :meth:`NeesPanel.facts`."""
+
+    seed: int  # the run: which batch of tracks
+    which: str  # "R" or "Q": the noise the filter gets wrong
+    factor: float  # the filter assumes factor times the true one
+    mean_nees: float  # the mean over the steps of the average NEES
+    band: tuple[float, float]  # where the average NEES lies 95 % of the time if the filter is honest
+    below: float  # share of the steps with the average NEES below the band
+    inside: float  # inside it
+    above: float  # above it
+    verdict: str  # "honest: ...", "timid: ..." or "over-confident: ..."
 
 
 class NeesPanel:
@@ -82,31 +99,47 @@ class NeesPanel:
             return "timid: the ellipse is larger than the real errors"
         return "honest: the ellipse matches the real errors"
 
+    def facts(self) -> NeesFacts:
+        """The mistuning, the mean, the shares of the steps below, inside and above the band, and the verdict:
+        what the description and the readout both say."""
+        below, inside, above = self.fractions()
+        return NeesFacts(
+            seed=self.batch.seed,
+            which=self.which,
+            factor=self.factor,
+            mean_nees=float(self.avg_nees.mean()),
+            band=self.band,
+            below=below,
+            inside=inside,
+            above=above,
+            verdict=self.verdict(),
+        )
+
     def describe(self) -> str:
         """What the picture shows in two sentences: the mistuning as the controls show it, the mean of the
         average NEES against its expected value, the shares of the steps below, inside and above the band
         (the readout's numbers); the verdict."""
-        below, inside, above = (f"{100 * share:.0f} %" for share in self.fractions())
-        factor = shown(self.factor, FACTOR_FORMAT)
+        f = self.facts()
+        below, inside, above = (f"{100 * share:.0f} %" for share in (f.below, f.inside, f.above))
         return (
-            f"With the filter assuming {factor} × the true {self.which} ({NOISE_NAMES[self.which]}), "
-            f"the average NEES of {N_TRACKS} tracks (run {self.batch.seed}) has a mean of {self.avg_nees.mean():.2f} "
-            f"({DOF} expected) and is below, inside and above the 95 % band at {below}, {inside} and {above} of "
-            f"the steps. The filter is {self.verdict()}."
+            f"With the filter assuming {shown(f.factor, FACTOR_FORMAT)} × the true {f.which} "
+            f"({NOISE_NAMES[f.which]}), the average NEES of {N_TRACKS} tracks (run {f.seed}) has a mean of "
+            f"{f.mean_nees:.2f} ({DOF} expected) and is below, inside and above the 95 % band at {below}, {inside} "
+            f"and {above} of the steps. The filter is {f.verdict}."
         )
 
 
 def _readout(model: NeesPanel) -> str:
     """The three lines under the picture: the mistuning and the mean, the shares of steps below, inside and
     above the band, and the verdict."""
-    low, high = model.band
-    below, inside, above = model.fractions()
+    f = model.facts()
+    low, high = f.band
     return (
-        f"<div style='font-size:13px;line-height:1.5'>run {model.batch.seed}: filter assumes "
-        f"{model.factor:.3g} × the true "
-        f"{model.which}: mean NEES = {model.avg_nees.mean():.2f} (band {low:.2f} to {high:.2f})<br>"
-        f"time steps below / inside / above the band: {below:.0%} / {inside:.0%} / {above:.0%}<br>"
-        f"<b>{model.verdict()}</b></div>"
+        f"<div style='font-size:13px;line-height:1.5'>run {f.seed}: filter assumes "
+        f"{shown(f.factor, FACTOR_FORMAT)} × the true {f.which}: mean NEES = {f.mean_nees:.2f} "
+        f"(band {low:.2f} to {high:.2f})<br>"
+        f"time steps below / inside / above the band: {f.below:.0%} / {f.inside:.0%} / {f.above:.0%}<br>"
+        f"<b>{f.verdict}</b></div>"
     )
 
 

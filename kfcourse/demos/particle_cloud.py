@@ -2,6 +2,8 @@
 
 from __future__ import annotations
 
+from dataclasses import dataclass
+
 import ipywidgets as widgets
 import numpy as np
 
@@ -19,6 +21,22 @@ INJECTION = 0.05  # share of the particles replaced by random poses after each r
 IMAGE_WIDTH = 500  # CSS px at most: beside the column, within a laptop's 848 px
 COLUMN_WIDTH = 340  # CSS px: the controls and the readout beside the picture
 SCHEME_BUTTON = 106  # CSS px: one resampling scheme's button, its whole name readable ("multinomial")
+
+
+@dataclass(frozen=True)
+class CloudFacts:
+    """What the description and the readout say about the step shown, computed once by :meth:`CloudModel.facts`."""
+
+    step: int
+    t: float  # s
+    n_particles: int
+    seen: int  # readings at this step
+    error: float  # distance of the cloud's mean from the truth (m)
+    inside: bool  # the truth is inside the cloud's drawn 2σ ellipse
+    ess: float  # the effective sample size N_eff
+    resampled: bool  # N_eff fell under N/2 and the cloud was resampled
+    injected: int  # random particles injected after the resampling
+    kidnapped: bool  # the true robot has been carried off, at this step or before
 
 
 class CloudModel:
@@ -93,15 +111,30 @@ class CloudModel:
         width, height = high - low
         return float(width), float(height)
 
+    def facts(self) -> CloudFacts:
+        """The facts of the step shown, which the description and the readout both say."""
+        run, k = self.run, self.frame
+        return CloudFacts(
+            step=k,
+            t=float(run.t[k]),
+            n_particles=int(run.n_particles),
+            seen=int(np.count_nonzero(run.visible[k])),
+            error=float(run.error[k]),
+            inside=bool(run.nees[k] <= NSIG**2),  # the drawn ellipse: a Mahalanobis distance of NSIG
+            ess=float(run.ess[k]),
+            resampled=bool(run.resampled[k]),
+            injected=int(run.injected[k]),
+            kidnapped=self.kidnap is not None and k >= self.kidnap,
+        )
+
     def describe(self) -> str:
         """What the picture shows: how far the cloud spreads, its error and whether the truth is inside its
         drawn ellipse, the effective sample size and whether the step resampled; then the settings of this lap."""
-        run, k = self.run, self.frame
-        inside = "inside" if run.nees[k] <= NSIG**2 else "outside"  # the drawn ellipse: a Mahalanobis distance of NSIG
-        ess = run.ess[k]
-        if run.resampled[k]:
+        f, run = self.facts(), self.run
+        inside = "inside" if f.inside else "outside"
+        if f.resampled:
             after = "under N/2, so the cloud is resampled"
-            after += f" and {run.injected[k]} random particles injected" if run.injected[k] else ""
+            after += f" and {f.injected} random particles injected" if f.injected else ""
         else:
             after = "at or over N/2, so the weights are kept"
         width, height = self.spread()
@@ -110,34 +143,36 @@ class CloudModel:
             (x_min, x_max), (y_min, y_max) = run.bounds
             box = f" of the {x_max - x_min:g} m by {y_max - y_min:g} m map"
         now = (
-            f"Step {k}: the {run.n_particles} particles spread over {width:.2f} m by {height:.2f} m{box} (the middle "
-            f"95 %), their mean {run.error[k]:.2f} m from the truth, which is {inside} their 2σ ellipse; "
-            f"the effective sample size {ess:.0f} is {after}."
+            f"Step {f.step}: the {f.n_particles} particles spread over {width:.2f} m by {height:.2f} m{box} (the "
+            f"middle 95 %), their mean {f.error:.2f} m from the truth, which is {inside} their 2σ ellipse; "
+            f"the effective sample size {f.ess:.0f} is {after}."
         )
         settings = [f"{run.resample} resampling", "a global start" if self.global_start else "a known start"]
         if self.injection:
             settings.append(f"{100 * INJECTION:.0f} % injected")
         if self.kidnap is not None:
-            settings.append(f"{'a kidnap at' if k >= self.kidnap else 'a kidnap to come at'} step {self.kidnap}")
+            settings.append(f"{'a kidnap at' if f.kidnapped else 'a kidnap to come at'} step {self.kidnap}")
         return f"{now} Run {self.seed}, with {', '.join(settings[:-1])} and {settings[-1]}."
 
 
 def _readout(model: CloudModel) -> str:
     """The lines beside the picture: the step, the error, the ESS, and what happened after weighing."""
-    run, k = model.run, model.frame
-    N, ess = run.n_particles, run.ess[k]
-    seen = int(np.count_nonzero(run.visible[k]))
-    if run.resampled[k]:
-        after = f"<b>resampled</b> ({run.resample}): N<sub>eff</sub> under N/2"
+    f = model.facts()
+    if f.resampled:
+        after = f"<b>resampled</b> ({model.run.resample}): N<sub>eff</sub> under N/2"
     else:
         after = "weights kept: N<sub>eff</sub> at or over N/2"
-    injected = f", {run.injected[k]} particles injected" if run.injected[k] else ""
-    kidnapped = f"<br><b>kidnapped</b> at step {model.kidnap}" if model.kidnap is not None else ""
+    injected = f", {f.injected} particles injected" if f.injected else ""
+    kidnapped = ""
+    if model.kidnap is not None:
+        kidnapped = f"<br>{'<b>kidnapped</b>' if f.kidnapped else 'a kidnap comes'} at step {model.kidnap}"
+    inside = "inside" if f.inside else "<b>outside</b>"
     return (
-        f"<div style='font-size:13px;line-height:1.5'>step {k}, t = {run.t[k]:.1f} s, run {model.seed}: "
-        f"{N} particles, {seen} reading{'s' if seen != 1 else ''}{kidnapped}<br>"
-        f"<span style='color:{palette.ESTIMATE_TEXT}'>position error {run.error[k]:.2f} m</span><br>"
-        f"N<sub>eff</sub> = {ess:.0f} ({ess / N:.1%} of N)<br>{after}{injected}</div>"
+        f"<div style='font-size:13px;line-height:1.5'>step {f.step}, t = {f.t:.1f} s, run {model.seed}: "
+        f"{f.n_particles} particles, {f.seen} reading{'s' if f.seen != 1 else ''}{kidnapped}<br>"
+        f"<span style='color:{palette.ESTIMATE_TEXT}'>position error {f.error:.2f} m</span>, "
+        f"truth {inside} the 2σ ellipse<br>"
+        f"N<sub>eff</sub> = {f.ess:.0f} ({f.ess / f.n_particles:.1%} of N)<br>{after}{injected}</div>"
     )
 
 

@@ -2,6 +2,8 @@
 
 from __future__ import annotations
 
+from dataclasses import dataclass
+
 import ipywidgets as widgets
 import numpy as np
 
@@ -9,7 +11,16 @@ from .. import _validate as v
 from ..plots import palette
 from ..plots.style import FigureRenderer
 from ..plots.tracking import tracker_view, update_tracker_view
-from ..sim.target import SENSOR_STD, START_STEPS, TargetRun, filter_target, nees, process_noise, simulate_target
+from ..sim.target import (
+    SENSOR_STD,
+    START_STEPS,
+    Honesty,
+    TargetRun,
+    filter_target,
+    nees,
+    process_noise,
+    simulate_target,
+)
 from ._base import Demo, button, shown, slider
 
 ACCEL_TUNED = 10.0  # m²/s⁴, the filter's assumed acceleration variance to start with
@@ -31,6 +42,20 @@ CAPTION = (
     "goes next. <i>sensor σ</i> and <i>New run</i> change the world (the readings); <i>Q</i> (× the true one) and "
     "<i>σₐ²</i> (which sets R) change only what the filter <i>assumes</i>."
 )
+
+
+@dataclass(frozen=True)
+class TrackerFacts:
+    """What the description and the readout say about the step shown, computed once by :meth:`Tracker.facts`."""
+
+    step: int
+    t: float  # s
+    mode: str  # "starting guess", "start-up", "jittery", "coasting" or "balanced"
+    gain: float | None  # the position gain K; None at step 0, where the estimate is the first reading
+    error: float  # distance of the estimate from the truth (m)
+    inside: bool  # the truth is inside the drawn 2σ ellipse
+    radius: float  # how far that ellipse reaches: half its long axis (m)
+    honesty: Honesty  # the run's NEES test: its verdict, mean NEES and band
 
 
 class Tracker:
@@ -131,40 +156,55 @@ class Tracker:
         raw = np.linalg.norm(self.run.z[:k] - truth, axis=1).mean()
         return float(est), float(raw)
 
+    def facts(self) -> TrackerFacts:
+        """The facts of the step shown, which the description and the readout both say."""
+        k = self.frame
+        return TrackerFacts(
+            step=k,
+            t=float(self.run.t[k]),
+            mode=self.mode(),
+            gain=self.gain() if k > 0 else None,  # no gain yet: the estimate is the first reading
+            error=float(self.est.position_error()[k]),
+            inside=self.truth_inside(),
+            radius=self.est.ellipse_radius(k),
+            honesty=self.est.honesty(),
+        )
+
     def describe(self) -> str:
         """What the picture shows in one short sentence (one line of the output, so that the picture and its
         controls fit a laptop's screen): the step and the settings as their sliders show them; the mode and
         the gain K; how far the estimate is off and whether the truth is inside its 2σ ellipse, of which
         radius; and the run's honesty verdict.  The numbers are the readout's (which a screen reader does not
         announce); the readout adds the velocities, the mean errors and the mean NEES."""
-        k, est = self.frame, self.est
+        f = self.facts()
         sensor = shown(self.sensor_std, SENSOR_FORMAT)
         q, accel = shown(self.q_factor, TUNING_FORMAT), shown(self.accel_var, TUNING_FORMAT)
-        gain = f", K = {self.gain():.3f}" if k > 0 else ""  # no gain yet: the estimate is the first reading
-        inside = "inside" if self.truth_inside() else "outside"
+        gain = f", K = {f.gain:.3f}" if f.gain is not None else ""
+        inside = "inside" if f.inside else "outside"
         return (
-            f"Step {k}, σ {sensor} m, Q × {q}, σₐ² {accel}: {self.mode()}{gain}; "
-            f"{est.position_error()[k]:.2f} m off, {inside} the 2σ ellipse ({est.ellipse_radius(k):.2f} m); "
-            f"{est.honesty().verdict}."
+            f"Step {f.step}, σ {sensor} m, Q × {q}, σₐ² {accel}: {f.mode}{gain}; "
+            f"{f.error:.2f} m off, {inside} the 2σ ellipse ({f.radius:.2f} m); {f.honesty.verdict}."
         )
 
 
 def _readout(model: Tracker, lo, hi) -> str:
     """The four lines under the picture: the velocities; the errors and the ellipse (said to reach past the
     map ``lo``-``hi`` where it does); the gain and its regime; the honesty test of the run."""
-    k, run, est = model.frame, model.run, model.est
+    f = model.facts()
     v_est, v_true = model.velocities()
     e_est, e_raw = model.errors()
-    radius, p = est.ellipse_radius(k), est.mu[k, :2]
-    past = " (past the edge)" if np.any(p - radius < lo) or np.any(p + radius > hi) else ""
-    h = est.honesty()
+    p = model.est.mu[f.step, :2]
+    past = ", past the edge" if np.any(p - f.radius < lo) or np.any(p + f.radius > hi) else ""
+    inside = "inside" if f.inside else "<b>outside</b>"
+    gain = f"K = {f.gain:.3f} &nbsp; " if f.gain is not None else ""
+    h = f.honesty
     return (
-        f"<div style='font-size:13px;line-height:1.45'>t = {run.t[k]:.1f} s &nbsp; velocity (m/s): "
+        f"<div style='font-size:13px;line-height:1.45'>t = {f.t:.1f} s &nbsp; velocity (m/s): "
         f"<span style='color:{palette.ESTIMATE_TEXT}'>estimated ({v_est[0]:+.2f}, {v_est[1]:+.2f})</span>, "
         f"true ({v_true[0]:+.2f}, {v_true[1]:+.2f}) &nbsp; run {model.seed}<br>"
-        f"estimate {est.position_error()[k]:.2f} m off, 2σ ellipse {radius:.2f} m{past}; "
+        f"estimate {f.error:.2f} m off, {inside} the 2σ ellipse ({f.radius:.2f} m{past}); "
         f"mean off so far: estimate {e_est:.2f} m, readings {e_raw:.2f} m<br>"
-        f"<b>K = {model.gain():.3f} &nbsp; {model.regime()}</b><br>"
+        f"<b>{gain}{REGIMES[f.mode]}</b><br>"
         f"<b>{h.verdict}</b>: mean position NEES over the run {h.mean_nees:.3g}, honest from {h.low:.2f} to "
         f"{h.high:.2f} &nbsp; (filter's Q = {model.q_var:.3g} m², true {model.sensor_std**2:.3g} m²)</div>"
     )

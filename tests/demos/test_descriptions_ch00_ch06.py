@@ -281,11 +281,12 @@ def tracker_says(demo) -> str:
     gain = f", K = {m.gain():.3f}" if k > 0 else ""
     assert f": {m.mode()}{gain}; {error} m off, " in text, text
     assert f"K = {m.gain():.3f}" in shown_below and m.mode() in m.regime() and m.regime() in shown_below
-    assert f"estimate {error} m off, 2σ ellipse {radius} m" in shown_below
     assert text.endswith(f" the 2σ ellipse ({radius} m); {verdict}.") and f"<b>{verdict}</b>" in shown_below, text
     off = m.run.truth[k, :2] - m.est.mu[k, :2]
     inside = off @ np.linalg.solve(m.est.Sig[k, :2, :2], off) <= 4  # within 2σ: a squared Mahalanobis distance ≤ 2²
     assert f" m off, {'inside' if inside else 'outside'} the 2σ ellipse (" in text, text
+    where = "inside" if inside else "<b>outside</b>"
+    assert f"estimate {error} m off, {where} the 2σ ellipse ({radius} m" in shown_below, shown_below
     return text
 
 

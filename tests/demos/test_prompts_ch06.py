@@ -100,7 +100,7 @@ def test_prompt_2_more_world_noise_explodes_the_scatter_while_the_estimate_stays
     assert roughness(m.est.mu[:, :2]) < 0.1 * roughness(m.run.z)  # "less than a tenth as much"
     assert (round(before["reach"], 2), round(m.est.ellipse_radius(k), 2)) == (0.94, 2.21)  # the ellipse grows
     assert (round(before["K"], 3), round(m.gain(), 3)) == (0.222, 0.135)  # K falls
-    assert "2σ ellipse 2.21 m" in readout(demo)
+    assert "inside the 2σ ellipse (2.21 m)" in readout(demo)
     seed, z = m.seed, m.run.z
     demo.controls["new"].click()  # "press New run"
     assert m.seed == seed + 1 and not np.allclose(m.run.z, z)
@@ -125,7 +125,7 @@ def test_prompt_3_huge_Q_coasts_and_is_timid_with_an_ellipse_past_the_picture():
     demo.controls["frame"].value = 90
     assert round(off(m, 90), 1) == 8.1 and round(m.est.ellipse_radius(90), 1) == 20.5
     text = readout(demo)
-    assert "2σ ellipse 20.50 m (past the edge)" in text and "<b>timid</b>" in text
+    assert "inside the 2σ ellipse (20.50 m, past the edge)" in text and "<b>timid</b>" in text
     assert round(m.est.honesty().mean_nees, 2) == 0.45
     ax = demo.renderer.fig.axes[0]
     (x0, x1), (y0, y1) = ax.get_xlim(), ax.get_ylim()
