@@ -98,6 +98,24 @@ def flag(x, name: str) -> bool:
     return bool(x)
 
 
+def flags(x, name: str) -> np.ndarray:
+    """An array of switches, each True or False (numpy bools, or the numbers 0 and 1), not NaN, 0.5 or text."""
+    a = np.asarray(x)
+    if a.dtype == bool:
+        return a
+    f = _floats(x, name)
+    if not np.isin(f, (0.0, 1.0)).all():
+        raise ValueError(f"{name} must hold True or False values, got {x!r}")
+    return f.astype(bool)
+
+
+def generator(rng, name: str) -> np.random.Generator:
+    """A numpy random Generator, the source of a function's draws."""
+    if not isinstance(rng, np.random.Generator):
+        raise ValueError(f"{name} must be a numpy random Generator, e.g. np.random.default_rng(seed); got {rng!r}")
+    return rng
+
+
 def vector(x, name: str, n: int | None = None) -> np.ndarray:
     """A finite 1-D array (a scalar becomes length 1), of length ``n`` if given."""
     a = finite(x, name)

@@ -38,6 +38,8 @@ UNMARKED = {
     "to a tolerance: a verdict, not a number of a noisy run",
     "tests/test_recording.py": "the frames of a recording against the demo's own pictures: the same run both ways",
     "tests/test_charts.py": "what each chart draws (titles, axes, artists), not the run's numbers",
+    "tests/test_bad_arguments.py": "that a bad argument is refused by name, and that a valid call runs: "
+    "no number of a noisy run",
     "tests/demos/test_stale.py": "which artists a control redraws and when the picture is drawn in full, not a number",
     "tests/demos/test_light_and_crisp.py": "the light picture against the crisp one of one state",
     "tests/demos/test_hallway_layout.py": "where the two text blocks stand, not what the run did",

@@ -79,6 +79,7 @@ def bayes_update(belief, likelihood, *, return_eta: bool = False):
     lik = v.vector(likelihood, "likelihood", bel_bar.size)
     if (lik < 0).any():
         raise ValueError(f"likelihood must be >= 0, got {lik.tolist()}")
+    return_eta = v.flag(return_eta, "return_eta")
     unnormalised = lik * bel_bar  # p(z|x) * bel_bar(x)
     total = unnormalised.sum()
     if total <= 0:

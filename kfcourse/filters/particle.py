@@ -62,12 +62,6 @@ def _particles(x, name: str = "particles") -> np.ndarray:
     return p
 
 
-def _rng(rng) -> np.random.Generator:
-    if not isinstance(rng, np.random.Generator):
-        raise ValueError(f"rng must be a numpy random Generator, e.g. np.random.default_rng(seed); got {rng!r}")
-    return rng
-
-
 def _log_weights(x, name: str, N: int | None = None) -> np.ndarray:
     """A 1-D array of log-weights, at least one: -inf (a weight of 0) allowed, NaN and +inf not."""
     a = np.atleast_1d(v._floats(x, name))
@@ -128,7 +122,7 @@ def pf_predict(particles, u, dt, M, rng: np.random.Generator) -> np.ndarray:
     u = v.vector(u, "u", 2)
     dt = v.positive(dt, "dt", "a time step", "s")
     M = v.covariance(M, "M", 2)
-    rng = _rng(rng)
+    rng = v.generator(rng, "rng")
     u_i = u + rng.multivariate_normal(np.zeros(2), M, size=len(x), check_valid="ignore")  # (1) u_i ~ N(u, M)
     return unicycle(x, u_i, dt)  # (2) x_bar_i = g(x_i, u_i), each particle with its own control
 
@@ -285,7 +279,7 @@ def resample_multinomial(w, rng: np.random.Generator) -> np.ndarray:
         The indices of the particles drawn: the new cloud is ``particles[idx]``, every
         weight 1/N.
     """
-    w, rng = _weights(w), _rng(rng)
+    w, rng = _weights(w), v.generator(rng, "rng")
     p = rng.random(len(w))  # (6) N independent positions in [0, 1)
     c = np.cumsum(w)  # c_i = w_0 + ... + w_i
     c /= c[-1]  # c_N = 1 exactly (c_N / c_N): a sum that rounds to 0.9999... would let an index run past the end
@@ -312,7 +306,7 @@ def resample_stratified(w, rng: np.random.Generator) -> np.ndarray:
     ndarray of int, shape (N,)
         The indices of the particles drawn (ascending); every new weight is 1/N.
     """
-    w, rng = _weights(w), _rng(rng)
+    w, rng = _weights(w), v.generator(rng, "rng")
     N = len(w)
     p = (np.arange(N) + rng.random(N)) / N  # (6) p_i = (i + U_i) / N
     c = np.cumsum(w)  # c_i = w_0 + ... + w_i
@@ -349,7 +343,7 @@ def resample_systematic(w, rng: np.random.Generator) -> np.ndarray:
     ndarray of int, shape (N,)
         The indices of the particles drawn (ascending); every new weight is 1/N.
     """
-    w, rng = _weights(w), _rng(rng)
+    w, rng = _weights(w), v.generator(rng, "rng")
     N = len(w)
     p = (np.arange(N) + rng.random()) / N  # (6) p_i = (i + U) / N, one U for all
     c = np.cumsum(w)  # c_i = w_0 + ... + w_i
@@ -435,7 +429,7 @@ def inject_random(particles, share, bounds, rng: np.random.Generator) -> np.ndar
     b = v.matrix(bounds, "bounds", 2, 2)
     if not (b[:, 0] < b[:, 1]).all():
         raise ValueError(f"bounds must be [[x_min, x_max], [y_min, y_max]] with each min < max, got {b.tolist()}")
-    rng = _rng(rng)
+    rng = v.generator(rng, "rng")
     N = len(x)
     n = round(share * N)
     rows = rng.choice(N, size=n, replace=False)  # which particles go: any, not the first n of a sorted cloud

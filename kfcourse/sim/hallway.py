@@ -36,12 +36,27 @@ def hallway_doors(n_cells: int = N_CELLS, left=LEFT_DOORS, right=RIGHT_DOORS) ->
     """
     n = v.whole(n_cells, "n_cells", 1)
     doors = np.zeros((2, n), bool)
-    for side, cells in enumerate((left, right)):
-        idx = np.asarray(cells, int).reshape(-1)
-        if ((idx < 0) | (idx >= n)).any():
-            raise ValueError(f"door cells must lie in 0..{n - 1}, got {list(cells)}")
-        doors[side, idx] = True
+    for side, (name, cells) in enumerate((("left", left), ("right", right))):
+        idx = v.vector(cells, name)
+        if not ((idx == np.round(idx)) & (idx >= 0) & (idx < n)).all():
+            raise ValueError(f"{name} must hold door cells, whole numbers in 0..{n - 1}, got {cells!r}")
+        doors[side, idx.astype(int)] = True
     return doors
+
+
+def _door_map(doors) -> np.ndarray:
+    """A checked door map: one wall (n_cells,) or one row per wall (2, n_cells), True where there is a door."""
+    is_door = v.flags(doors, "doors")
+    if is_door.ndim not in (1, 2) or is_door.shape[-1] == 0:
+        raise ValueError(f"doors must have shape (n_cells,) or (2, n_cells), a door map; got {is_door.shape}")
+    return is_door
+
+
+def _inside(cell: int, n_cells: int) -> int:
+    """``cell``, a whole number >= 0, if the hallway of ``n_cells`` has it."""
+    if cell >= n_cells:
+        raise ValueError(f"cell must be a cell of the hallway, 0 to {n_cells - 1}, got {cell}")
+    return cell
 
 
 def motion_kernel(reliability: float) -> dict[int, float]:
@@ -55,7 +70,11 @@ def motion_kernel(reliability: float) -> dict[int, float]:
 
 def move(cell: int, kernel: dict[int, float], rng: np.random.Generator, n_cells: int, boundary: str = "wall") -> int:
     """Sample where the true robot lands after one commanded move."""
+    cell = v.whole(cell, "cell")
     k = v.kernel(kernel, "kernel")
+    rng = v.generator(rng, "rng")
+    n_cells = v.whole(n_cells, "n_cells", 1)
+    cell = _inside(cell, n_cells)
     if boundary not in BOUNDARIES:
         raise ValueError(f"boundary must be one of {BOUNDARIES}, got {boundary!r}")
     offsets = list(k)
@@ -71,8 +90,11 @@ def read_door(cell: int, doors, reliability: float, rng: np.random.Generator):
     shape ``(2, n_cells)`` (left and right wall) it reads each side in turn and
     returns an array of two bools.
     """
+    cell = v.whole(cell, "cell")
+    is_door = _door_map(doors)
+    cell = _inside(cell, is_door.shape[-1])
     p = v.probability(reliability, "reliability")
-    is_door = np.asarray(doors, bool)
+    rng = v.generator(rng, "rng")
     if is_door.ndim == 1:
         truth = bool(is_door[cell])
         return truth if rng.random() < p else not truth
@@ -94,19 +116,22 @@ def door_likelihood(doors, saw_door, reliability: float) -> np.ndarray:
     -------
     ndarray, shape (n_cells,)
     """
+    is_door = _door_map(doors)
+    saw = v.flags(saw_door, "saw_door")
     p = v.probability(reliability, "reliability")
-    is_door = np.asarray(doors, bool)
     if is_door.ndim == 1:
-        return np.where(is_door == bool(saw_door), p, 1.0 - p)
-    saw = np.asarray(saw_door, bool).reshape(-1, 1)
-    if saw.shape[0] != is_door.shape[0]:
+        if saw.size != 1:
+            raise ValueError(f"saw_door must be one reading, True or False, for the door map of one wall; got {saw!r}")
+        return np.where(is_door == bool(saw), p, 1.0 - p)
+    if saw.shape != is_door.shape[:1]:
         raise ValueError(f"saw_door must hold one reading per side ({is_door.shape[0]}), got {saw_door!r}")
-    return np.prod(np.where(is_door == saw, p, 1.0 - p), axis=0)  # p(z_left | x) * p(z_right | x)
+    return np.prod(np.where(is_door == saw[:, None], p, 1.0 - p), axis=0)  # p(z_left | x) * p(z_right | x)
 
 
 def start_cell(rng: np.random.Generator, n_cells: int = N_CELLS) -> int:
     """Where the true robot starts: any cell, equally likely (the filter is not told)."""
-    return int(rng.integers(n_cells))
+    rng = v.generator(rng, "rng")
+    return int(rng.integers(v.whole(n_cells, "n_cells", 1)))
 
 
 def peak_cells(histogram) -> np.ndarray:
@@ -186,7 +211,7 @@ def simulate_hallway(
     ps = v.probability(sensor_reliability, "sensor_reliability")
     if boundary not in BOUNDARIES:
         raise ValueError(f"boundary must be one of {BOUNDARIES}, got {boundary!r}")
-    door_map = hallway_doors() if doors is None else np.asarray(doors, bool)
+    door_map = hallway_doors() if doors is None else v.flags(doors, "doors")
     if door_map.ndim != 2 or door_map.shape[0] != 2:
         raise ValueError(f"doors must have shape (2, n_cells), got {door_map.shape}")
     n = door_map.shape[1]

@@ -19,6 +19,7 @@ import numpy as np
 from .. import _validate as v
 from ..filters.association import associate, mahalanobis
 from ..filters.ekf import ekf_predict, ekf_update
+from ..filters.localization import _gate
 from ..filters.ukf import ukf_predict, ukf_update
 from ..models import (
     pose_mean,
@@ -34,6 +35,7 @@ from ..models import (
 )
 from .records import Record, read_only, text_table
 from .robot import DEFAULT_LANDMARKS, RobotRun, loop_controls, simulate_robot
+from .target import nees
 
 FILTERS = ("ekf", "ukf")
 V_STD, OMEGA_STD = 0.1, 0.05  # odometry noise at motion_noise = 1: m/s, rad/s
@@ -168,6 +170,9 @@ def process_noise_of_odometry(mu, u, dt: float, M) -> np.ndarray:
     -------
     ndarray, shape (3, 3)
     """
+    mu = v.vector(mu, "mu", 3)  # each argument by its own name (the Jacobian would call mu "state")
+    u = v.vector(u, "u", 2)
+    dt = v.positive(dt, "dt", "a time step", "s")
     M = v.covariance(M, "M", 2)
     W = unicycle_control_jacobian(mu, u, dt)  # (3, 2): how each control moves the pose
     return W @ M @ W.T  # R = W M W^T
@@ -215,8 +220,15 @@ def localize(
     -------
     Track
     """
+    world = _world(world)
+    predict, update = v.function(predict, "predict"), v.function(update, "update")
+    Sig0 = v.covariance(Sig0, "Sig0", len(world.start) if mu0 is None else None)
+    accept = v.optional_function(accept, "accept")
+    mu0 = world.start if mu0 is None else v.vector(mu0, "mu0", len(Sig0))
+    identify = v.optional_function(identify, "identify")
     T, L = world.visible.shape
-    mu, Sig = np.array(world.start if mu0 is None else mu0, dtype=float), np.array(Sig0, dtype=float)
+    known = None if known is None else _known(known, T)
+    mu, Sig = np.array(mu0, dtype=float), np.array(Sig0, dtype=float)
     mu_bar, Sig_bar = np.empty((T, *mu.shape)), np.empty((T, *Sig.shape))
     mus, Sigs, used = np.empty_like(mu_bar), np.empty_like(Sig_bar), np.zeros((T, L), dtype=bool)
     matched = np.full((T, L), -1)
@@ -239,6 +251,23 @@ def localize(
                 used[k, j], matched[k, j] = True, i
         mus[k], Sigs[k] = mu, Sig
     return Track(mu_bar=mu_bar, Sig_bar=Sig_bar, mu=mus, Sig=Sigs, used=used, matched=matched)
+
+
+def _world(world) -> RobotRun:
+    if not isinstance(world, RobotRun):
+        raise ValueError(f"world must be a RobotRun (kf.sim.simulate_robot), got {type(world).__name__}")
+    return world
+
+
+def _known(known, T: int) -> tuple[int, Track]:
+    """``known`` of :func:`localize`: a pair (k0, track), the track's first k0 steps of the T to copy."""
+    if not (isinstance(known, tuple) and len(known) == 2 and isinstance(known[1], Track | LoopRun)):
+        got = type(known).__name__
+        raise ValueError(f"known must be a pair (k0, track) of a step count and a Track or LoopRun, got {got}")
+    k0, track = v.whole(known[0], "known[0]"), known[1]
+    if k0 > min(T, len(track.mu)):
+        raise ValueError(f"known[0] must be a step count up to {min(T, len(track.mu))}, the steps known; got {k0}")
+    return k0, track
 
 
 def _steps_in_common(old: LoopRun, world: RobotRun, mu0, setting: dict) -> int:
@@ -272,6 +301,11 @@ def loop_filter(filter: str, dt: float, M, Q, wrap_bearing: bool = True) -> tupl
     heading of the result.  The UKF uses λ = 0 and averages headings on the circle.
     Introduced in chapter 8 (EKF) and chapter 9 (UKF).
     """
+    if not isinstance(filter, str) or filter not in FILTERS:
+        raise ValueError(f"filter must be one of {FILTERS}, got {filter!r}")
+    dt = v.positive(dt, "dt", "a time step", "s")
+    M, Q = v.covariance(M, "M", 2), v.covariance(Q, "Q", 2)
+    wrap_bearing = v.flag(wrap_bearing, "wrap_bearing")
     z_residual = range_bearing_residual if wrap_bearing else None
     z_mean = range_bearing_mean if wrap_bearing else None
 
@@ -297,6 +331,9 @@ def loop_filter(filter: str, dt: float, M, Q, wrap_bearing: bool = True) -> tupl
 def gate_within(gate: float, Q, wrap_bearing: bool = True) -> Callable:
     """A validation gate (chapter 8): accept a reading whose Mahalanobis distance from the landmark's
     predicted reading, with the linearized ``S = H Sig_bar H^T + Q``, is at most ``gate``."""
+    gate = v.positive(gate, "gate", "a distance", "standard deviations")
+    Q = v.covariance(Q, "Q", 2)
+    wrap_bearing = v.flag(wrap_bearing, "wrap_bearing")
 
     def accept(mu_bar, Sig_bar, z, m) -> bool:
         z_hat, H = range_bearing(mu_bar, m), range_bearing_jacobian(mu_bar, m)
@@ -326,10 +363,13 @@ def loop_world(
     """The capstone's world: the default robot drives :func:`loop_controls` through the map, its noise scaled.
 
     ``motion_noise`` scales the odometry noise (0.1 m/s, 0.05 rad/s at 1), ``sensor_noise`` the
-    reading noise (0.1 m, 0.03 rad at 1); ``drive`` passes ``sensor_range``, ``laps``,
-    ``kidnap`` and ``dropout`` to :func:`~kfcourse.sim.simulate_robot`.  Introduced in chapter 11 (chapter
-    10's :func:`landmark_loop` drives it without naming it).
+    reading noise (0.1 m, 0.03 rad at 1), each from 0.01 to 100 (:data:`NOISE_SCALES`); ``drive``
+    passes ``sensor_range``, ``laps``, ``kidnap`` and ``dropout`` to :func:`~kfcourse.sim.simulate_robot`.
+    Introduced in chapter 11 (chapter 10's :func:`landmark_loop` drives it without naming it).
     """
+    seed = v.whole(seed, "seed", 0)
+    motion_noise = _noise_scale(motion_noise, "motion_noise")
+    sensor_noise = _noise_scale(sensor_noise, "sensor_noise")
     dt = 0.2  # s
     return simulate_robot(
         loop_controls(dt=dt),
@@ -354,8 +394,14 @@ def localize_with_step(world: RobotRun, step: Callable, Sig0, M, Q, gate: float,
     ``ValueError`` names the function, the step and what went wrong.  The readings are labelled; the
     filter starts at ``mu0``, by default the true start.  Introduced in chapter 10.
     """
+    world = _world(world)
+    step = v.function(step, "step")
+    Sig0 = v.covariance(Sig0, "Sig0", 3)
+    M, Q = v.covariance(M, "M", 2), v.covariance(Q, "Q", 2)
+    gate = _gate(gate)
+    mu0 = world.start if mu0 is None else v.vector(mu0, "mu0", 3)
     T, L = world.visible.shape
-    mu, Sig = np.array(world.start if mu0 is None else mu0, dtype=float), np.array(Sig0, dtype=float)
+    mu, Sig = np.array(mu0, dtype=float), np.array(Sig0, dtype=float)
     mu_bar, Sig_bar = np.empty((T, 3)), np.empty((T, 3, 3))
     mus, Sigs, used = np.empty_like(mu_bar), np.empty_like(Sig_bar), np.zeros((T, L), dtype=bool)
     nothing = np.empty((0, 2))
@@ -547,28 +593,12 @@ def landmark_loop(
     return _loop_run(world, track, mu0, **setting)
 
 
-def _position_nees(err, Sxy) -> np.ndarray:
-    """The position NEES e^T Sig_xy^-1 e at every step (chapter 6).
-
-    A flat ellipse (a singular Sig_xy, which a step function may return) claims that the
-    error cannot leave its line, or its point: an error that does is infinitely unlikely,
-    and its NEES is infinite.  So is the NEES of an ellipse so small that its inverse overflows
-    (a particle cloud collapsed onto one particle)."""
-    with np.errstate(over="ignore", invalid="ignore"):  # overflow and inf * 0 below mean: infinitely unlikely
-        inv = np.linalg.pinv(Sxy)
-        d2 = np.einsum("ti,tij,tj->t", err, inv, err)  # e^T Sig_xy^-1 e
-        off = np.linalg.norm(err - np.einsum("tij,tjk,tk->ti", Sxy, inv, err), axis=1)  # the part outside the ellipse
-    d2 = np.where(np.isnan(d2), np.inf, d2)
-    return np.where(off > 1e-9 * (1.0 + np.linalg.norm(err, axis=1)), np.inf, d2)
-
-
 def _loop_run(world: RobotRun, track: Track, mu0, *, filter, wrap_bearing, gate, labelled, noise) -> LoopRun:
     """The record of one lap: the world, the filter's track, and the truth measured against it.
 
     ``noise`` is (world's motion, world's sensor, filter's motion, filter's sensor) noise scales."""
-    err = world.truth[:, :2] - track.mu[:, :2]
-    Sxy = track.Sig[:, :2, :2]
-    d2 = _position_nees(err, Sxy)
+    err, Sxy = world.truth[:, :2] - track.mu[:, :2], track.Sig[:, :2, :2]
+    d2 = nees(world.truth[:, :2], track.mu[:, :2], Sxy)  # the position NEES, every step
     return LoopRun(
         t=world.t,
         dt=world.dt,

@@ -35,8 +35,9 @@ from ..filters.particle import (
     resample_stratified,
     resample_systematic,
 )
-from .localization import BEARING_STD, OMEGA_STD, RANGE_STD, SIG0, V_STD, _noise_scale, _position_nees, loop_world
+from .localization import BEARING_STD, OMEGA_STD, RANGE_STD, SIG0, V_STD, _noise_scale, loop_world
 from .records import Record
+from .target import nees
 
 RESAMPLERS = {
     "multinomial": resample_multinomial,
@@ -118,6 +119,9 @@ def localized(run, bound: float = LOCALIZED) -> bool:
     -------
     bool
     """
+    if not (hasattr(run, "t") and hasattr(run, "error")):
+        got = type(run).__name__
+        raise ValueError(f"run must be a run record with t and error (a LoopRun or ParticleRun), got {got}")
     bound = v.positive(bound, "bound", "an error", "m")
     T = len(run.t)
     quarter = max(1, T // getattr(run, "laps", 1) // 4)  # steps in a quarter lap, at least the last one
@@ -280,7 +284,7 @@ def particle_loop(
             log_w = log_w - log_w.max()  # keep the weights (the largest as 0, so the sum never drifts off)
 
     err = world.truth[:, :2] - mu[:, :2]
-    nees = _position_nees(err, Sig[:, :2, :2])
+    position_nees = nees(world.truth[:, :2], mu[:, :2], Sig[:, :2, :2])
     return ParticleRun(
         t=world.t,
         dt=world.dt,
@@ -300,8 +304,8 @@ def particle_loop(
         mu=mu,
         Sig=Sig,
         error=np.linalg.norm(err, axis=1),
-        inside=nees <= 9.0,
-        nees=nees,
+        inside=position_nees <= 9.0,
+        nees=position_nees,
         n_particles=N,
         resample=resample,
         global_start=global_start,

@@ -98,9 +98,9 @@ def loop_controls(
     ndarray, shape (T, 2)
         One control ``[V, omega]`` (m/s, rad/s) per step.
     """
-    radius = v.positive(radius, "radius", "a radius", "m")
     length = v.scalar(length, "length")
     width = v.scalar(width, "width")
+    radius = v.positive(radius, "radius", "a radius", "m")
     for name, side in (("length", length), ("width", width)):
         if side < 2 * radius:
             raise ValueError(f"{name} must be at least 2 radius = {2 * radius} m, got {side}")
@@ -140,8 +140,10 @@ def readings(truth, landmarks, sensor_range: float, range_std: float, bearing_st
     truth : ndarray, shape (T, 3)
         True poses.
     landmarks : ndarray, shape (L, 2)
-    sensor_range, range_std, bearing_std : float
-        Checked by the caller.
+    sensor_range : float
+        Largest range at which a landmark is seen (m), > 0.
+    range_std, bearing_std : float
+        Reading noise on the range (m) and the bearing (rad), >= 0.
     xi : ndarray, shape (T, L, 2)
         Standard normal draws.
 
@@ -151,6 +153,15 @@ def readings(truth, landmarks, sensor_range: float, range_std: float, bearing_st
         Readings ``[r, phi]``; zeros where not visible.
     visible : ndarray, shape (T, L), bool
     """
+    truth = v.matrix(truth, "truth", cols=3)
+    landmarks = _landmark_map(landmarks)
+    sensor_range = v.positive(sensor_range, "sensor_range", "a range", "m")
+    range_std = v.non_negative(range_std, "range_std", "a standard deviation", "m")
+    bearing_std = v.non_negative(bearing_std, "bearing_std", "a standard deviation", "rad")
+    xi = v.finite(xi, "xi")
+    if xi.shape != (len(truth), len(landmarks), 2):
+        want = (len(truth), len(landmarks), 2)
+        raise ValueError(f"xi must have shape {want}, a pair of draws per pose and landmark; got {xi.shape}")
     z = np.zeros((len(truth), len(landmarks), 2))
     visible = np.zeros((len(truth), len(landmarks)), dtype=bool)
     for j, mj in enumerate(landmarks):

@@ -226,6 +226,8 @@ def filter_target(run: TargetRun, R, Q) -> TargetEstimates:
     -------
     TargetEstimates
     """
+    if not isinstance(run, TargetRun):
+        raise ValueError(f"run must be a TargetRun (kf.sim.simulate_target), got {type(run).__name__}")
     R = v.covariance(R, "R", 4)
     Q = v.covariance(Q, "Q", 2)
     F, H = constant_velocity(run.dt, dim=2)
@@ -337,6 +339,8 @@ def filter_tracks(batch: TrackBatch, R, Q) -> tuple[np.ndarray, np.ndarray]:
     -------
     (mu, Sig) : read-only arrays, shapes (N, T, 4), (N, T, 4, 4)
     """
+    if not isinstance(batch, TrackBatch):
+        raise ValueError(f"batch must be a TrackBatch (kf.sim.simulate_tracks), got {type(batch).__name__}")
     R = v.covariance(R, "R", 4)
     Q = v.covariance(Q, "Q", 2)
     F, H = constant_velocity(batch.dt, dim=2)
@@ -361,20 +365,47 @@ def nees(truth, mu, Sig) -> np.ndarray:
     :math:`N(0, \Sigma)`), the NEES follows a chi-square distribution with
     n degrees of freedom: on average it equals n.  Introduced in chapter 6.
 
+    A flat ellipse (a singular :math:`\Sigma`, which a student's step or a particle cloud
+    collapsed onto one pose may give) claims that the error cannot leave its line, or its
+    point: an error that does is infinitely unlikely, and its NEES is ``inf``; an error within
+    it gets the NEES of the pseudo-inverse.  So is the NEES of an ellipse so small that its
+    inverse overflows.  Every NEES of the course (chapters 6, 10 and 11) is this function.
+
     Parameters
     ----------
     truth, mu : array_like, shape (..., n)
     Sig : array_like, shape (..., n, n)
+        Covariances: symmetric, positive semi-definite.
 
     Returns
     -------
     ndarray, shape (...)
     """
-    err = v.finite(truth, "truth") - v.finite(mu, "mu")  # x - mu
-    Sig = v.finite(Sig, "Sig")
-    if Sig.shape != err.shape + err.shape[-1:]:
-        raise ValueError(f"Sig must have shape {err.shape + err.shape[-1:]}, got {Sig.shape}")
-    return np.einsum("...i,...i->...", err, np.linalg.solve(Sig, err[..., None])[..., 0])
+    truth, mu, Sig = v.finite(truth, "truth"), v.finite(mu, "mu"), v.finite(Sig, "Sig")
+    if not (truth.ndim and truth.shape == mu.shape and Sig.shape == truth.shape + truth.shape[-1:]):
+        raise ValueError(_odd_shape(truth.shape, mu.shape, Sig.shape))
+    n = truth.shape[-1]
+    v.covariance_stack(Sig.reshape(-1, n, n), "Sig", Sig.size // (n * n) if n else 0, n)
+    err = truth - mu  # x - mu
+    with np.errstate(over="ignore", invalid="ignore", divide="ignore"):  # an overflow: infinitely unlikely
+        try:  # the common case: every Sig positive definite
+            d2 = np.einsum("...i,...i->...", err, np.linalg.solve(Sig, err[..., None])[..., 0])
+        except np.linalg.LinAlgError:  # a flat ellipse: the pseudo-inverse, and inf for an error that leaves it
+            inv = np.linalg.pinv(Sig)
+            d2 = np.einsum("...i,...ij,...j->...", err, inv, err)
+            off = np.linalg.norm(err - np.einsum("...ij,...jk,...k->...i", Sig, inv, err), axis=-1)
+            d2 = np.where(off > 1e-9 * (1.0 + np.linalg.norm(err, axis=-1)), np.inf, d2)
+    return np.where(np.isnan(d2), np.inf, d2)
+
+
+def _odd_shape(truth: tuple, mu: tuple, Sig: tuple) -> str:
+    """Which input of :func:`nees` has the odd shape, given that truth and mu must be (..., n) and Sig (..., n, n)."""
+    if truth and truth == mu:
+        return f"Sig must have shape {truth + truth[-1:]}, as truth and mu have shape {truth}; got {Sig}"
+    for name, shape, other, agreed in (("truth", truth, "mu", mu), ("mu", mu, "truth", truth)):
+        if agreed and Sig == agreed + agreed[-1:]:
+            return f"{name} must have shape {agreed}, as {other} has and Sig has shape {Sig}; got {shape}"
+    return f"truth has shape {truth}, mu {mu} and Sig {Sig}: they must be (..., n), (..., n) and (..., n, n)"
 
 
 def nees_band(n_runs: int, dof: int, level: float = 0.95) -> tuple[float, float]:

@@ -9,7 +9,7 @@ import numpy as np
 import pytest
 
 import kfcourse as kf
-from kfcourse.sim.localization import SIG0, _position_nees, _steps_in_common, loop_world
+from kfcourse.sim.localization import SIG0, _steps_in_common, loop_world
 
 pytestmark = pytest.mark.fact  # states facts of seeded runs: repeated under other rounding (tests/facts.py)
 
@@ -289,7 +289,7 @@ def test_a_flat_ellipse_the_truth_leaves_is_infinitely_unlikely():
     assert np.isinf(run.nees).all() and not run.inside.any() and (run.area == 0).all()
     assert run.honesty()[1] == "over-confident"
     line = np.array([[[1.0, 0.0], [0.0, 0.0]]] * 2)  # an ellipse flattened onto the x axis
-    nees = _position_nees(np.array([[0.5, 0.0], [0.5, 1e-3]]), line)
+    nees = kf.sim.nees(np.array([[0.5, 0.0], [0.5, 1e-3]]), np.zeros((2, 2)), line)  # the one NEES of the course
     assert nees[0] == pytest.approx(0.25) and np.isinf(nees[1])  # along its line, and off it
 
 
@@ -368,7 +368,7 @@ def test_an_ellipse_too_small_to_invert_has_an_infinite_nees_without_a_warning()
     Sxy = np.array([np.eye(2) * 1e-320, np.eye(2)])
     with warnings.catch_warnings():
         warnings.simplefilter("error")
-        nees = _position_nees(err, Sxy)
+        nees = kf.sim.nees(err, np.zeros_like(err), Sxy)
     assert nees[0] == np.inf and nees[1] == 0.0
 
 
