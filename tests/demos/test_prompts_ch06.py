@@ -63,7 +63,7 @@ def test_prompt_1_run_from_step_0_starts_up_stays_balanced_and_beats_the_reading
     demo = kf.demos.tracker(seed=0)
     m = demo.model
     demo.controls["frame"].value = 0  # "drag step to 0"
-    assert m.regime().startswith("starting guess")
+    assert m.regime().startswith("starting guess")  # step 0: the first reading; "start-up" from step 1
     demo.controls["play"].value = True  # "press Run": plays from the step shown
     demo.controls["play"].value = False
     assert demo.controls["frame"].value <= 1
@@ -72,7 +72,7 @@ def test_prompt_1_run_from_step_0_starts_up_stays_balanced_and_beats_the_reading
     while demo.step():
         regimes.append(m.regime().split(":")[0])
     assert regimes == ["start-up"] * (START_STEPS - 1) + ["balanced"] * (m.run.t.size - START_STEPS)
-    assert m.run.t[START_STEPS] == pytest.approx(2.0)  # "for the first 2 s"
+    assert m.run.t[START_STEPS] == pytest.approx(2.0)  # "from step 1 to 2 s"
     est, raw = m.errors()
     assert (round(est, 2), round(raw, 2)) == (0.64, 1.28)  # "0.64 m against 1.28 m here"
     assert "<b>honest</b>" in readout(demo)

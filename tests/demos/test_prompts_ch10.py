@@ -56,6 +56,18 @@ def test_prompt_1_a_normal_lap_is_accurate_and_honest():
     assert rejected[0] == 0 and (rejected == 0).sum() >= 16  # "an orange one is rare (none in run 0)"
 
 
+def test_the_readouts_shares_inside_stray_from_86_and_99_percent_lap_by_lap():
+    """ "over runs 0-19 a lap ends with 80 % to 98 % of its steps inside the 2σ ellipse and 93 % to 100 % inside
+    the 3σ one", as the readout writes them (whole per cent) at the lap's last step."""
+    last = []
+    for m in models():
+        m.frame = m.run.t.size - 1
+        last.append(m.facts())
+    inside_2 = [round(100 * f.share_inside) for f in last]
+    inside_3 = [round(100 * f.share_inside_3sigma) for f in last]
+    assert (min(inside_2), max(inside_2)) == (80, 98) and (min(inside_3), max(inside_3)) == (93, 100)
+
+
 def test_prompt_2_the_lessons_recipe_through_the_controls():
     """Process noise about 3, dropout at step 20, again at step 90; then New run, run after run."""
     demo = kf.demos.landmark_loop(seed=0)
