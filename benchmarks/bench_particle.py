@@ -23,7 +23,7 @@ import time
 import numpy as np
 
 import kfcourse as kf
-from kfcourse.sim.localization import BEARING_STD, OMEGA_STD, RANGE_STD, V_STD
+from kfcourse.sim.capstone_world import BEARING_STD, OMEGA_STD, RANGE_STD, V_STD
 
 RUNS = 200  # timed steps
 WARM_UP = 20  # untimed steps first

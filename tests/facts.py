@@ -36,6 +36,8 @@ UNMARKED = {
     "or statistical checks of the filters' own draws with margins of many standard errors",
     "tests/check/": "the checkers run a student's function and the course's on the same draws and compare them "
     "to a tolerance: a verdict, not a number of a noisy run",
+    "tests/test_package.py::test_the_nees_is_computed_in_one_place": "a run's NEES against kf.sim.nees of the same "
+    "run: one computation both ways, whatever the rounding",
     "tests/test_recording.py": "the frames of a recording against the demo's own pictures: the same run both ways",
     "tests/test_charts.py": "what each chart draws (titles, axes, artists), not the run's numbers",
     "tests/test_bad_arguments.py": "that a bad argument is refused by name, and that a valid call runs: "

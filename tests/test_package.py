@@ -10,6 +10,7 @@ import subprocess
 import sys
 from pathlib import Path
 
+import numpy as np
 import pytest
 
 import kfcourse as kf
@@ -201,3 +202,51 @@ def _seeded() -> list:
 def test_every_seed_is_checked_by_name(function, needs, seed):
     with pytest.raises(ValueError, match=r"^seed must be a whole number >= 0"):
         function(seed=seed, **needs)
+
+
+# --------------------------------------------------------------------------- one job per module
+PACKAGE = REPO / "kfcourse"
+
+
+def test_no_two_modules_share_a_name():
+    """A student told to open a module by its name lands in one file (filters/, sim/, plots/, demos/, check/)."""
+    names: dict[str, list[str]] = {}
+    for path in PACKAGE.rglob("*.py"):
+        if path.name != "__init__.py":
+            names.setdefault(path.name, []).append(str(path.relative_to(REPO)))
+    assert not {name: where for name, where in names.items() if len(where) > 1}
+
+
+def test_the_simulations_are_short_modules_of_short_functions():
+    """kfcourse/sim: no module over 400 lines, no function (its docstring included) over 80."""
+    import ast
+
+    for path in sorted((PACKAGE / "sim").glob("*.py")):
+        text = path.read_text()
+        assert text.count("\n") <= 400, f"{path.name}: {text.count(chr(10))} lines"
+        for node in ast.walk(ast.parse(text)):
+            if isinstance(node, ast.FunctionDef | ast.AsyncFunctionDef):
+                first = min([node.lineno, *(d.lineno for d in node.decorator_list)])
+                assert node.end_lineno - first + 1 <= 80, (
+                    f"{path.name}: {node.name} is {node.end_lineno - first + 1} lines"
+                )
+
+
+def test_the_nees_is_computed_in_one_place():
+    """Every NEES of the course is kf.sim.nees (sim/scores.py): no other simulation, demo or plot solves or
+    inverts a covariance against an error (the filters' own gains and Mahalanobis distances aside)."""
+    found = [
+        str(p.relative_to(REPO))
+        for part in ("sim", "demos", "plots")
+        for p in (PACKAGE / part).glob("*.py")
+        if re.search(r"linalg\.(solve|pinv|inv)\(", p.read_text()) and p.name != "scores.py"
+    ]
+    assert found == ["kfcourse/sim/target.py"] and "K = Sig_bar H^T S^-1" in (PACKAGE / "sim/target.py").read_text()
+    runs = [kf.sim.landmark_loop(0), kf.sim.particle_loop(0, n_particles=200), kf.sim.run_ekf(seed=0)]
+    for run in runs:
+        assert np.array_equal(run.nees if hasattr(run, "nees") else run.inside, _nees_of(run, hasattr(run, "nees")))
+
+
+def _nees_of(run, whole: bool):
+    d2 = kf.sim.nees(run.truth[:, :2], run.mu[:, :2], run.Sig[:, :2, :2])
+    return d2 if whole else d2 <= 9.0

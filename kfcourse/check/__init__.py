@@ -18,13 +18,13 @@ way to write each.
 """
 
 from ._core import MISTAKES, CheckResult
-from .bayes import bayes_predict, bayes_update
+from .bayes_checks import bayes_predict, bayes_update
 from .exercises import affine_gaussian, cv_model, drift_sigma
-from .kalman import fuse, kf_1d_step, kf_step
-from .localization import localization_step
+from .kalman_checks import fuse, kf_1d_step, kf_step
+from .localization_checks import localization_step
 from .nonlinear import range_bearing, range_bearing_jacobian, unicycle
-from .particle import resample_systematic
-from .ukf import sigma_points, unscented_transform
+from .particle_checks import resample_systematic
+from .ukf_checks import sigma_points, unscented_transform
 
 __all__ = [
     "MISTAKES",

@@ -1,8 +1,8 @@
 """Interactive demos, one module each; every demo is a function returning an
 ipywidgets widget: ``kf.demos.hallway(seed=0)``."""
 
-from .association import data_association
 from .covariance import covariance_ellipse
+from .data_association import data_association
 from .hallway import hallway
 from .landmark_loop import landmark_loop
 from .linearization import linearization

@@ -9,7 +9,7 @@ import numpy as np
 
 from .. import _validate as v
 from ..filters.gaussian import mass_inside
-from ..plots.covariance import covariance_view, update_covariance
+from ..plots.covariance_view import covariance_view, update_covariance
 from ..plots.style import FigureRenderer
 from ._base import Demo, shown, slider
 

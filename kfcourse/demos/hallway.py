@@ -9,9 +9,9 @@ import numpy as np
 
 from .. import _validate as v
 from ..filters.bayes import bayes_predict, bayes_update
-from ..plots.hallway import hallway_view, update_hallway
+from ..plots.hallway_view import hallway_view, update_hallway
 from ..plots.style import FigureRenderer
-from ..sim.hallway import (
+from ..sim.hallway_world import (
     BOUNDARY,
     MOTION_RELIABILITY,
     N_CELLS,
@@ -35,7 +35,7 @@ class HallwayModel:
     """Model: the belief, the hidden true cell and the last reading.
 
     Predict and Update draw from one seeded generator in the same order as
-    :func:`kfcourse.sim.hallway.simulate_hallway`, so alternating them replays that run.
+    :func:`kfcourse.sim.hallway_world.simulate_hallway`, so alternating them replays that run.
 
     Attributes
     ----------

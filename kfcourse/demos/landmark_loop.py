@@ -12,8 +12,8 @@ from ..plots import palette
 from ..plots.loop import loop_view, update_loop_view
 from ..plots.loop_strips import NSIG
 from ..plots.style import FigureRenderer
-from ..sim.localization import HONEST_NEES
-from ..sim.localization import landmark_loop as run_loop
+from ..sim.landmark_lap import landmark_loop as run_loop
+from ..sim.scores import HONEST_NEES
 from ._base import Demo, button, shown, slider
 
 FIRST_FRAME = 60  # the step shown first: on the top straight, two landmarks in view

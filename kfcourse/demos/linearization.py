@@ -6,9 +6,9 @@ import ipywidgets as widgets
 import numpy as np
 
 from .. import _validate as v
-from ..plots.ekf import linearization_view, update_linearization_view
+from ..plots.ekf_figures import linearization_view, update_linearization_view
 from ..plots.style import FigureRenderer
-from ..sim.curves import FUNCTIONS, GaussianThroughCurve
+from ..sim.curve_functions import FUNCTIONS, GaussianThroughCurve
 from ._base import Demo, shown, slider
 
 X_RANGE = (-4.0, 4.0)

@@ -11,7 +11,8 @@ import numpy as np
 from .. import _validate as v
 from ..plots.style import FigureRenderer
 from ..plots.tracking import nees_view, update_nees_view
-from ..sim.target import filter_tracks, nees, nees_band, simulate_tracks
+from ..sim.scores import nees, nees_band
+from ..sim.target import filter_tracks, simulate_tracks
 from ._base import Demo, button, shown, slider
 
 N_TRACKS = 200

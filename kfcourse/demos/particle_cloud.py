@@ -11,7 +11,7 @@ from ..plots import palette
 from ..plots.loop_strips import NSIG
 from ..plots.particles import cloud_view, update_cloud_view
 from ..plots.style import FigureRenderer
-from ..sim.particle import RESAMPLERS, particle_loop
+from ..sim.particle_lap import RESAMPLERS, particle_loop
 from ._base import Demo, button, slider
 
 FIRST_FRAME = 60  # the step shown first, as in chapter 10: on the top straight, two landmarks in view

@@ -10,9 +10,9 @@ import numpy as np
 from .. import _validate as v
 from ..filters.bayes import bayes_predict, bayes_update
 from ..filters.particle import effective_sample_size, resample_systematic
-from ..plots.particle_hallway import particle_hallway_view, update_particle_hallway
+from ..plots.particle_hallway_view import particle_hallway_view, update_particle_hallway
 from ..plots.style import FigureRenderer
-from ..sim.hallway import (
+from ..sim.hallway_world import (
     BOUNDARY,
     MOTION_RELIABILITY,
     N_CELLS,
@@ -25,13 +25,13 @@ from ..sim.hallway import (
     read_door,
     start_cell,
 )
-from ..sim.particle import PF_STREAM
-from ..sim.particle_hallway import (
+from ..sim.particle_hallway_run import (
     hallway_particles_predict,
     hallway_particles_weight,
     particle_histogram,
     total_variation,
 )
+from ..sim.particle_lap import PF_STREAM
 from ._base import Demo, button, slider
 
 DOORS = hallway_doors()
@@ -44,9 +44,9 @@ class ParticleHallwayModel:
     """Model: chapter 1's hallway (truth, readings, bars) and a particle cloud on the same readings.
 
     The world draws from ``default_rng(seed)`` in the order of
-    :func:`kfcourse.sim.hallway.simulate_hallway`, the particles from
+    :func:`kfcourse.sim.hallway_world.simulate_hallway`, the particles from
     ``default_rng([seed, PF_STREAM])``: alternating Update and Predict replays
-    :func:`kfcourse.sim.particle_hallway.simulate_particle_hallway`.  A new particle count
+    :func:`kfcourse.sim.particle_hallway_run.simulate_particle_hallway`.  A new particle count
     replays every press since the last Reset with the new cloud, on the same readings.
 
     Attributes
@@ -145,7 +145,7 @@ class ParticleHallwayModel:
 def peak(histogram: np.ndarray) -> str:
     """Where a histogram over the cells peaks, in words: "42 % on cells 0 and 10".
 
-    Every cell of :func:`~kfcourse.sim.hallway.peak_cells` is named, up to four, else their number.  A share that
+    Every cell of :func:`~kfcourse.sim.hallway_world.peak_cells` is named, up to four, else their number.  A share that
     rounds to 100 % without being 1 is "over 99 %"."""
     top = float(histogram.max())
     cells = [str(c) for c in peak_cells(histogram)]

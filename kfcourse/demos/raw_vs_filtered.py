@@ -8,7 +8,7 @@ import ipywidgets as widgets
 import numpy as np
 
 from .. import _validate as v
-from ..plots.raw_vs_filtered import raw_vs_filtered_view, update_raw_vs_filtered
+from ..plots.raw_vs_filtered_view import raw_vs_filtered_view, update_raw_vs_filtered
 from ..plots.style import FigureRenderer
 from ..sim.line import simulate_line
 from ._base import Demo, button, shown, slider

@@ -9,8 +9,8 @@ from .. import _validate as v
 from ..filters.ukf import sigma_points as make_sigma_points
 from ..filters.ukf import unscented_1d
 from ..plots.style import FigureRenderer
-from ..plots.ukf import sigma_points_view, update_sigma_points_view
-from ..sim.curves import FUNCTIONS, GaussianThroughCurve
+from ..plots.ukf_figures import sigma_points_view, update_sigma_points_view
+from ..sim.curve_functions import FUNCTIONS, GaussianThroughCurve
 from ._base import Demo, shown, slider
 
 N_SAMPLES = 20_000  # fixed standard-normal draws, rescaled by the sliders

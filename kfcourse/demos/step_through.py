@@ -7,7 +7,7 @@ import numpy as np
 
 from .. import _validate as v
 from ..filters.kalman_1d import kf_1d_gain, kf_1d_predict, kf_1d_update
-from ..plots.step_through import step_through_view, update_step_through
+from ..plots.step_through_view import step_through_view, update_step_through
 from ..plots.style import FigureRenderer
 from ._base import Demo, button, shown, slider
 

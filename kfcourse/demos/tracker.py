@@ -11,13 +11,13 @@ from .. import _validate as v
 from ..plots import palette
 from ..plots.style import FigureRenderer
 from ..plots.tracking import tracker_view, update_tracker_view
+from ..sim.scores import nees
 from ..sim.target import (
     SENSOR_STD,
     START_STEPS,
     Honesty,
     TargetRun,
     filter_target,
-    nees,
     process_noise,
     simulate_target,
 )

@@ -10,7 +10,7 @@ from .. import _validate as v
 from ..filters.gaussian import fuse
 from ..filters.kalman_1d import kf_1d_gain
 from ..plots.style import FigureRenderer
-from ..plots.trust import trust_view, update_trust
+from ..plots.trust_view import trust_view, update_trust
 from ._base import Demo, shown, slider
 
 MEAN_FORMAT = ".2f"  # the mean sliders' readouts

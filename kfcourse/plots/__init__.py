@@ -21,16 +21,16 @@ from .artists import (
     update_gaussian_curve,
     update_robot,
 )
-from .bayes import bayes_cycle_chart
+from .bayes_cycle import bayes_cycle_chart
 from .charts import blend_variance_chart, convergence_chart, drift_chart, ellipse_shadow_chart, samples_chart
-from .ekf import jacobian_runs_chart, nonlinear_samples_chart
-from .localization import gate_outline, reading_points, update_ellipse_chart, wrap_runs_chart
+from .ekf_figures import jacobian_runs_chart, nonlinear_samples_chart
+from .localization_figures import gate_outline, reading_points, update_ellipse_chart, wrap_runs_chart
 from .loop import loop_chart, position_errors
 from .matrix import predict_update_chart
 from .particles import cloud_chart
 from .runs import kf_run_chart
 from .style import FigureRenderer, new_figure
-from .ukf import filter_comparison_chart, transform_moments_chart
+from .ukf_figures import filter_comparison_chart, transform_moments_chart
 
 __all__ = [
     "FigureRenderer",

@@ -21,7 +21,7 @@ from matplotlib.patches import Ellipse
 from .. import _validate as v
 from . import palette
 from .artists import covariance_ellipse, update_covariance_ellipse
-from .curves import axis_range
+from .curve_panels import axis_range
 from .style import new_figure
 
 __all__ = ["NeesView", "TrackerView", "nees_view", "tracker_view", "update_nees_view", "update_tracker_view"]

@@ -1,11 +1,12 @@
 """Seeded simulation engines.  Each returns an immutable run record (arrays over
 time), or is a pure function of its inputs and a seeded generator."""
 
-from .association import AssociationScan, GatedUpdate, association_scan, gated_update
+from .capstone_world import loop_world
 from .drift import bias_drift, drift_sigma, monte_carlo_drift
 from .ekf_runs import TWO_LANDMARKS, EkfRun, flipped_bearing_jacobian, run_ekf
 from .family import FamilyTable, FilterScore, family_table
-from .hallway import (
+from .gated_run import OutlierRun, plain_and_gated
+from .hallway_world import (
     HallwayRun,
     door_likelihood,
     hallway_doors,
@@ -15,30 +16,22 @@ from .hallway import (
     simulate_hallway,
     start_cell,
 )
+from .landmark_lap import landmark_loop
 from .line import LineRun, simulate_line
-from .localization import (
-    LoopRun,
-    Track,
-    gate_within,
-    landmark_loop,
-    localize,
-    localize_with_step,
-    loop_filter,
-    loop_world,
-    process_noise_of_odometry,
-)
-from .outlier import OutlierRun, plain_and_gated
-from .particle import ParticleRun, localized, particle_loop
-from .particle_hallway import ParticleHallwayRun, simulate_particle_hallway
+from .loop_filters import gate_within, localize, loop_filter, process_noise_of_odometry
+from .loop_records import LoopRun, Track
+from .particle_hallway_run import ParticleHallwayRun, simulate_particle_hallway
+from .particle_lap import ParticleRun, localized, particle_loop
 from .robot import DEFAULT_LANDMARKS, RobotRun, loop_controls, readings, simulate_robot
+from .scan import AssociationScan, GatedUpdate, association_scan, gated_update
+from .scores import nees, nees_band
+from .student_step import localize_with_step
 from .target import (
     TargetEstimates,
     TargetRun,
     TrackBatch,
     filter_target,
     filter_tracks,
-    nees,
-    nees_band,
     process_noise,
     simulate_target,
     simulate_tracks,

@@ -26,9 +26,10 @@ from ..models import (
     unicycle_jacobian,
     wrap_angle,
 )
-from .localization import localize
+from .loop_filters import localize
 from .records import Record, read_only, text_table
 from .robot import simulate_robot
+from .scores import nees
 
 # Two landmarks inside the default loop (x from -4 to 4 m, y from 0 to 5 m).
 TWO_LANDMARKS = read_only([[-2.0, 2.5], [2.0, 2.5]])
@@ -114,7 +115,7 @@ def run_ekf(flipped: bool = False, seed: int = 0, landmarks=None) -> EkfRun:
 
     track = localize(world, predict, update, np.diag([0.01, 0.01, 0.001]))
     e = world.truth[:, :2] - track.mu[:, :2]
-    d2 = np.einsum("ti,tij,tj->t", e, np.linalg.inv(track.Sig[:, :2, :2]), e)  # e^T Sig_xy^-1 e
+    d2 = nees(world.truth[:, :2], track.mu[:, :2], track.Sig[:, :2, :2])  # e^T Sig_xy^-1 e
     return EkfRun(
         t=world.t,
         truth=world.truth,

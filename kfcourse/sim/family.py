@@ -19,18 +19,10 @@ from functools import partial
 import numpy as np
 
 from .. import _validate as v
-from .localization import (
-    BEARING_STD,
-    OMEGA_STD,
-    RANGE_STD,
-    SIG0,
-    V_STD,
-    landmark_loop,
-    localize,
-    loop_filter,
-    loop_world,
-)
-from .particle import LOCALIZED, MAX_PARTICLES, ParticleRun, localized, particle_loop
+from .capstone_world import BEARING_STD, OMEGA_STD, RANGE_STD, SIG0, V_STD, loop_world
+from .landmark_lap import landmark_loop
+from .loop_filters import localize, loop_filter
+from .particle_lap import LOCALIZED, MAX_PARTICLES, ParticleRun, localized, particle_loop
 from .records import Record, text_table
 
 KIDNAP = 60  # the step of chapter 10's kidnap, about half a lap
@@ -238,7 +230,7 @@ def family_table(seeds=range(20), particle_counts=(200, 2000), runs=()) -> Famil
     seeds : iterable of int
         The seeds (whole numbers >= 0, at least one), the same for every filter.
     particle_counts : iterable of int
-        The particle filter's counts N (from 1 to :data:`~kfcourse.sim.particle.MAX_PARTICLES`, at least one).
+        The particle filter's counts N (from 1 to :data:`~kfcourse.sim.particle_lap.MAX_PARTICLES`, at least one).
     runs : iterable of ParticleRun, optional
         Particle-filter laps already run (:func:`~kfcourse.sim.particle_loop`); a lap the table needs (the
         same seed, N, world and settings) is taken from them instead of being run again.

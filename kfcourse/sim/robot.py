@@ -285,19 +285,21 @@ def simulate_robot(
     start = v.vector(start, "start", 3)
     m = _landmark_map(landmarks)
     sensor_range = v.positive(sensor_range, "sensor_range", "a range", "m")
+    stds = _noise_stds(v_std, omega_std, range_std, bearing_std)
+    seed, laps = v.whole(seed, "seed", 0), v.whole(laps, "laps", 1)
+    if kidnap is not None and not v.whole(kidnap, "kidnap") < laps * len(u):
+        raise ValueError(f"kidnap must be a step below {laps * len(u)}, got {kidnap}")
+    dropout, one_back = _dropout(dropout), v.flag(one_back, "one_back")
+    return _drive(u, dt, start, m, sensor_range, stds, seed, laps, kidnap, dropout, one_back)
+
+
+def _noise_stds(v_std, omega_std, range_std, bearing_std) -> dict[str, float]:
+    """The noise of :func:`simulate_robot`, checked: odometry (m/s, rad/s) and readings (m, rad), by name."""
     v_std = v.non_negative(v_std, "v_std", "a standard deviation", "m/s")
     omega_std = v.non_negative(omega_std, "omega_std", "a standard deviation", "rad/s")
     range_std = v.non_negative(range_std, "range_std", "a standard deviation", "m")
     bearing_std = v.non_negative(bearing_std, "bearing_std", "a standard deviation", "rad")
-    seed = v.whole(seed, "seed", 0)
-    laps = v.whole(laps, "laps", 1)
-    if kidnap is not None and not v.whole(kidnap, "kidnap") < laps * len(u):
-        raise ValueError(f"kidnap must be a step below {laps * len(u)}, got {kidnap}")
-    dropout = _dropout(dropout)
-    one_back = v.flag(one_back, "one_back")
-
-    stds = {"v_std": v_std, "omega_std": omega_std, "range_std": range_std, "bearing_std": bearing_std}
-    return _drive(u, dt, start, m, sensor_range, stds, seed, laps, kidnap, dropout, one_back)
+    return {"v_std": v_std, "omega_std": omega_std, "range_std": range_std, "bearing_std": bearing_std}
 
 
 def _landmark_map(landmarks) -> np.ndarray:

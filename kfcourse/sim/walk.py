@@ -148,12 +148,10 @@ def simulate_walk(
     seed = v.whole(seed, "seed", 0)
     n_steps = v.whole(n_steps, "n_steps", 1)
     u = v.scalar(u, "u")
-    R_true = v.variance(R_true, "R_true")
-    Q_true = v.variance(Q_true, "Q_true")
+    R_true, Q_true = v.variance(R_true, "R_true"), v.variance(Q_true, "Q_true")
     velocity = v.scalar(velocity, "velocity")
     x0 = v.scalar(x0, "x0")
     R, Q, mu0, var0 = _filter_settings(R, Q, mu0, var0, R_true=R_true, Q_true=Q_true, x0=x0)
-
     w, e = np.random.default_rng(seed).standard_normal((n_steps, 2)).T  # one pair of draws per step
     truth = x0 + np.cumsum(u + velocity + math.sqrt(R_true) * w)  # x_k = x_{k-1} + u + v + w_k,  w ~ N(0, R_true)
     z = truth + math.sqrt(Q_true) * e  # z_k = x_k + delta_k,  delta ~ N(0, Q_true)

@@ -20,16 +20,16 @@ import kfcourse as kf
 from tests.check import answers
 
 CHECKERS = {  # checker -> the module that holds it
-    "bayes_predict": "bayes",
-    "bayes_update": "bayes",
-    "fuse": "kalman",
-    "kf_1d_step": "kalman",
-    "kf_step": "kalman",
+    "bayes_predict": "bayes_checks",
+    "bayes_update": "bayes_checks",
+    "fuse": "kalman_checks",
+    "kf_1d_step": "kalman_checks",
+    "kf_step": "kalman_checks",
     "range_bearing": "nonlinear",
     "range_bearing_jacobian": "nonlinear",
-    "sigma_points": "ukf",
+    "sigma_points": "ukf_checks",
     "unicycle": "nonlinear",
-    "unscented_transform": "ukf",
+    "unscented_transform": "ukf_checks",
 }
 
 #: Each checker's catalogue: the mistakes students make, each as a student would write it.

@@ -14,7 +14,7 @@ import numpy as np
 import pytest
 
 import kfcourse as kf
-from kfcourse.check import localization
+from kfcourse.check import localization_checks as localization
 from tests.check import new_answers as a
 
 #: checker name -> the package's own answer

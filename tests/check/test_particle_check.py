@@ -15,7 +15,7 @@ import numpy as np
 import pytest
 
 import kfcourse as kf
-from kfcourse.check import particle
+from kfcourse.check import particle_checks as particle
 from kfcourse.check._core import show
 from tests.check import particle_answers as a
 

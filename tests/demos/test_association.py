@@ -11,9 +11,9 @@ from matplotlib.colors import to_rgba
 from matplotlib.patches import Ellipse, Polygon
 
 import kfcourse as kf
-from kfcourse.demos.association import LEG_OPTIONS
+from kfcourse.demos.data_association import LEG_OPTIONS
 from kfcourse.plots import palette
-from kfcourse.plots.localization import CLOSE_UP_X, CLOSE_UP_Y
+from kfcourse.plots.localization_figures import CLOSE_UP_X, CLOSE_UP_Y
 from tests.demos.layout import readout
 
 pytestmark = pytest.mark.fact  # states facts of seeded runs: repeated under other rounding (tests/facts.py)

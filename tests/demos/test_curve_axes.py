@@ -14,7 +14,7 @@ import pytest
 
 import kfcourse as kf
 from kfcourse.plots.style import FIGURE_SPACE
-from kfcourse.sim.curves import FUNCTIONS
+from kfcourse.sim.curve_functions import FUNCTIONS
 
 pytestmark = pytest.mark.fact  # states facts of seeded runs: repeated under other rounding (tests/facts.py)
 

@@ -11,7 +11,7 @@ import numpy as np
 import pytest
 
 import kfcourse as kf
-from kfcourse.check.localization import _variants
+from kfcourse.check.localization_checks import _variants
 from kfcourse.demos.landmark_loop import COLUMN_WIDTH, FIRST_FRAME, GATE, IMAGE_WIDTH, YOURS
 from kfcourse.filters.gaussian import ellipse_axes
 from kfcourse.plots.loop import position_errors, strip_limit

@@ -9,7 +9,8 @@ import pytest
 
 import kfcourse as kf
 from kfcourse.demos.nees import DOF, N_STEPS, N_TRACKS
-from kfcourse.sim.target import filter_tracks, nees, nees_band
+from kfcourse.sim.scores import nees, nees_band
+from kfcourse.sim.target import filter_tracks
 from tests.demos.layout import readout
 from tests.demos.test_tracker import LAPTOP_PX, OUTPUT_PX, estimated_height, readout_lines, rows_fit_the_output
 

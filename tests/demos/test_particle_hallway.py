@@ -10,8 +10,8 @@ import pytest
 
 import kfcourse as kf
 from kfcourse.demos.particle_hallway import N_MAX, N_MIN, ParticleHallwayModel
-from kfcourse.plots.particle_hallway import particle_hallway_view, update_particle_hallway
-from kfcourse.sim.particle_hallway import simulate_particle_hallway
+from kfcourse.plots.particle_hallway_view import particle_hallway_view, update_particle_hallway
+from kfcourse.sim.particle_hallway_run import simulate_particle_hallway
 from tests.demos.particle_drive import presses
 
 pytestmark = pytest.mark.fact  # states facts of seeded runs: repeated under other rounding (tests/facts.py)

@@ -209,10 +209,10 @@ def test_ch1_clicking_predict_and_update_drives_the_model(seed):
 
 
 def test_ch1_demo_replays_the_chapters_simulation():
-    """The demo and kf.sim.hallway.simulate_hallway (which the chapter's checked cell counts) agree."""
+    """The demo and kf.sim.hallway_world.simulate_hallway (which the chapter's checked cell counts) agree."""
     demo = kf.demos.hallway(seed=3)
     alternate(demo, 10)
-    run = kf.sim.hallway.simulate_hallway(10, seed=3)
+    run = kf.sim.hallway_world.simulate_hallway(10, seed=3)
     assert demo.model.true_cell == run.true_cell[-1]
     np.testing.assert_allclose(demo.model.belief, run.belief[-1])
 

@@ -11,7 +11,7 @@ import pytest
 from matplotlib.path import Path
 
 import kfcourse as kf
-from kfcourse.demos.association import LEG_OPTIONS
+from kfcourse.demos.data_association import LEG_OPTIONS
 from tests.demos.layout import readout
 
 pytestmark = pytest.mark.fact  # states facts of seeded runs: repeated under other rounding (tests/facts.py)
@@ -81,7 +81,7 @@ def test_prompt_2_a_wide_gate_lets_the_leg_in_and_the_estimate_slides_off():
     assert Path(demo.view.gates.get_paths()[3].vertices).contains_points(leg_point)[0]  # inside gate 3
     truth = demo.model.scan.truth
     assert np.linalg.norm(estimate_drawn(demo) - truth[:2]) == pytest.approx(res.error)
-    assert np.linalg.norm(estimate_drawn(demo) - truth[:2]) > 2 * kf.plots.localization.CLOSE_UP_ROBOT  # apart
+    assert np.linalg.norm(estimate_drawn(demo) - truth[:2]) > 2 * kf.plots.localization_figures.CLOSE_UP_ROBOT  # apart
     assert truth_outside_ellipse(res, truth)
     accepted = []
     for k in SCANS:

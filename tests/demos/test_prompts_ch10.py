@@ -195,7 +195,7 @@ def test_prompt_6_a_timid_r_shows_when_blind():
 @pytest.mark.slow  # 200 laps: its fact holds for any rounding by a wide margin, and the band is a constant
 def test_the_honesty_band_takes_in_all_but_one_of_200_honest_laps():
     """ "over 200 laps of an honest filter ... between 0.97 and 3.8, and 1 to 4 takes in all but one of them"."""
-    low, high = kf.sim.localization.HONEST_NEES
+    low, high = kf.sim.scores.HONEST_NEES
     means = np.array([LoopModel(seed).run.nees.mean() for seed in range(200)])
     assert (low, high) == (1.0, 4.0)
     assert 0.95 <= means.min() < low and 3.7 <= means.max() < high

@@ -17,8 +17,8 @@ from matplotlib.text import Text
 import kfcourse as kf
 from kfcourse.demos.sigma_points import OUTPUT_LIMITS, X_RANGE
 from kfcourse.plots import palette
-from kfcourse.plots.curves import ARROW, CUT
-from kfcourse.sim.curves import FUNCTIONS
+from kfcourse.plots.curve_panels import ARROW, CUT
+from kfcourse.sim.curve_functions import FUNCTIONS
 
 pytestmark = pytest.mark.fact  # states facts of seeded runs: repeated under other rounding (tests/facts.py)
 

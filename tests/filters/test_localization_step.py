@@ -10,7 +10,7 @@ import numpy as np
 import pytest
 
 import kfcourse as kf
-from kfcourse.sim.localization import SIG0
+from kfcourse.sim.capstone_world import SIG0
 
 
 def _noise(world):

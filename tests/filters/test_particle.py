@@ -17,7 +17,7 @@ import pytest
 from scipy import stats
 
 import kfcourse as kf
-from kfcourse.sim.localization import BEARING_STD, OMEGA_STD, RANGE_STD, V_STD
+from kfcourse.sim.capstone_world import BEARING_STD, OMEGA_STD, RANGE_STD, V_STD
 
 M = np.diag([V_STD, OMEGA_STD]) ** 2  # the capstone's odometry noise
 Q = np.diag([RANGE_STD, BEARING_STD]) ** 2  # and its reading noise

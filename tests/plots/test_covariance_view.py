@@ -9,7 +9,7 @@ import numpy as np
 import pytest
 
 import kfcourse as kf
-from kfcourse.plots.covariance import covariance_view, update_covariance
+from kfcourse.plots.covariance_view import covariance_view, update_covariance
 from kfcourse.plots.style import FigureRenderer
 
 WHITE = np.random.default_rng(0).standard_normal((500, 2))

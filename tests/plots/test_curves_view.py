@@ -7,7 +7,7 @@ import numpy as np
 import pytest
 
 import kfcourse as kf
-from kfcourse.plots.curves import (
+from kfcourse.plots.curve_panels import (
     ARROW,
     CUT,
     HEADROOM,
@@ -15,10 +15,10 @@ from kfcourse.plots.curves import (
     show_sideways_gaussian,
     sideways_histogram,
 )
-from kfcourse.plots.ekf import linearization_view, update_linearization_view
+from kfcourse.plots.ekf_figures import linearization_view, update_linearization_view
 from kfcourse.plots.style import FigureRenderer, set_limits
-from kfcourse.plots.ukf import sigma_points_view, update_sigma_points_view
-from kfcourse.sim.curves import GaussianThroughCurve
+from kfcourse.plots.ukf_figures import sigma_points_view, update_sigma_points_view
+from kfcourse.sim.curve_functions import GaussianThroughCurve
 
 pytestmark = pytest.mark.fact  # states facts of seeded runs: repeated under other rounding (tests/facts.py)
 

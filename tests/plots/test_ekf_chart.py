@@ -27,7 +27,7 @@ def test_chart_draws_both_runs(runs):
         ellipses = [p for p in ax.patches if isinstance(p, Ellipse)]
         assert len(ellipses) == len(range(0, run.t.size, 12))
         assert f"largest error {run.error.max():.1f} m" in ax.get_title()  # not the final error: chaotic
-        assert kf.plots.ekf.share_outside(run) in ax.get_title()
+        assert kf.plots.ekf_figures.share_outside(run) in ax.get_title()
         for p in ellipses:
             assert np.isfinite(p.get_verts()).all()
     errors = [np.asarray(line.get_ydata()) for line in ax_e.get_lines()]
@@ -71,4 +71,4 @@ def test_share_outside_in_whole_tenths(inside, words):
 
     run = Run()
     run.inside = np.array(inside)
-    assert kf.plots.ekf.share_outside(run) == words
+    assert kf.plots.ekf_figures.share_outside(run) == words

@@ -10,9 +10,9 @@ import pytest
 from matplotlib.colors import to_hex
 
 from kfcourse.plots import palette
-from kfcourse.plots.hallway import BARS_SHARE, TOP_STEP, hallway_view, update_hallway
+from kfcourse.plots.hallway_view import BARS_SHARE, TOP_STEP, hallway_view, update_hallway
 from kfcourse.plots.style import FigureRenderer
-from kfcourse.sim.hallway import hallway_doors
+from kfcourse.sim.hallway_world import hallway_doors
 
 DOORS = hallway_doors()
 N = DOORS.shape[1]

@@ -15,7 +15,7 @@ import kfcourse as kf
 from kfcourse.demos.particle_hallway import ParticleHallwayModel
 from kfcourse.filters.gaussian import ellipse_axes
 from kfcourse.plots import palette
-from kfcourse.plots.particle_hallway import particle_hallway_view, update_particle_hallway
+from kfcourse.plots.particle_hallway_view import particle_hallway_view, update_particle_hallway
 from kfcourse.plots.particles import DOT_SIZE, RESAMPLE_LINE, cloud_chart, cloud_view, update_cloud_view, weight_shades
 
 pytestmark = pytest.mark.fact  # states facts of seeded runs: repeated under other rounding (tests/facts.py)

@@ -7,7 +7,7 @@ import numpy as np
 import pytest
 
 from kfcourse.demos.raw_vs_filtered import N_STEPS, RawVsFiltered
-from kfcourse.plots.raw_vs_filtered import raw_vs_filtered_limits, raw_vs_filtered_view, update_raw_vs_filtered
+from kfcourse.plots.raw_vs_filtered_view import raw_vs_filtered_limits, raw_vs_filtered_view, update_raw_vs_filtered
 from kfcourse.plots.style import FigureRenderer
 
 pytestmark = pytest.mark.fact  # states facts of seeded runs: repeated under other rounding (tests/facts.py)

@@ -18,12 +18,12 @@ from matplotlib.patches import Patch
 
 import kfcourse as kf
 from kfcourse.plots import palette
-from kfcourse.plots.ekf import linearization_view
-from kfcourse.plots.raw_vs_filtered import raw_vs_filtered_view
-from kfcourse.plots.step_through import step_through_view
+from kfcourse.plots.ekf_figures import linearization_view
+from kfcourse.plots.raw_vs_filtered_view import raw_vs_filtered_view
+from kfcourse.plots.step_through_view import step_through_view
 from kfcourse.plots.tracking import tracker_view
-from kfcourse.plots.trust import trust_view
-from kfcourse.plots.ukf import sigma_points_view
+from kfcourse.plots.trust_view import trust_view
+from kfcourse.plots.ukf_figures import sigma_points_view
 
 DOTTED, DASHED, DASH_DOT = ":", "--", "-."
 LIMITS = {"x²": (-1.0, 9.0), "sin x": (-1.25, 1.25), "range √(x² + 1)": (0.5, 5.5)}

@@ -10,7 +10,7 @@ import numpy as np
 import pytest
 
 import kfcourse as kf
-from kfcourse.plots.step_through import HALF_WIDTH, step_through_view, update_step_through
+from kfcourse.plots.step_through_view import HALF_WIDTH, step_through_view, update_step_through
 from kfcourse.plots.style import FigureRenderer
 
 

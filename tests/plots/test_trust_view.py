@@ -10,7 +10,7 @@ import pytest
 
 import kfcourse as kf
 from kfcourse.plots.style import FigureRenderer
-from kfcourse.plots.trust import trust_view, update_trust
+from kfcourse.plots.trust_view import trust_view, update_trust
 
 
 def model(mu_pred=-1.0, var_pred=1.0, z=1.5, var_meas=0.3, fused=None) -> SimpleNamespace:

@@ -111,12 +111,12 @@ def test_bad_input_raises_value_error(call):
 def test_landmark_update_is_ekf_update_with_the_landmark_bound_and_the_bearing_wrapped():
     """Chapter 8's worked update, and a reading straight behind the robot whose bearing crosses +-pi."""
     mu_bar, Sig_bar, Q = np.array([1.0, 2.0, 0.0]), np.diag([0.3, 0.3, 0.1]), np.diag([0.04, 0.01])
-    mu, Sig = kf.sim.association.landmark_update(mu_bar, Sig_bar, [4.6, 0.95], [4.0, 6.0], Q)
+    mu, Sig = kf.sim.scan.landmark_update(mu_bar, Sig_bar, [4.6, 0.95], [4.0, 6.0], Q)
     assert mu[:2] - mu_bar[:2] == pytest.approx([0.2207, 0.2757], abs=5e-5)
     sight = np.array([0.6, 0.8])  # toward the landmark
     assert sight @ Sig[:2, :2] @ sight == pytest.approx(0.035, abs=5e-4)  # the chapter's 0.3 -> 0.035
     behind = np.array([-2.0, 2.0])  # straight behind the robot: predicted bearing pi
-    mu, _ = kf.sim.association.landmark_update(mu_bar, Sig_bar, [3.0, -np.pi + 0.01], behind, Q)
+    mu, _ = kf.sim.scan.landmark_update(mu_bar, Sig_bar, [3.0, -np.pi + 0.01], behind, Q)
     assert abs(mu[2]) < 0.05  # a wrapped innovation of 0.01 rad, not -2 pi
     with pytest.raises(ValueError, match="landmark"):
-        kf.sim.association.landmark_update(mu_bar, Sig_bar, [4.6, 0.95], [4.0, 6.0, 1.0], Q)
+        kf.sim.scan.landmark_update(mu_bar, Sig_bar, [4.6, 0.95], [4.0, 6.0, 1.0], Q)

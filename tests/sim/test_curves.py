@@ -7,7 +7,7 @@ import numpy as np
 import pytest
 
 import kfcourse as kf
-from kfcourse.sim.curves import FUNCTIONS, OFFSET, GaussianThroughCurve
+from kfcourse.sim.curve_functions import FUNCTIONS, OFFSET, GaussianThroughCurve
 
 pytestmark = pytest.mark.fact  # states facts of seeded runs: repeated under other rounding (tests/facts.py)
 

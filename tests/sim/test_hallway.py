@@ -6,7 +6,7 @@ import numpy as np
 import pytest
 
 import kfcourse as kf
-from kfcourse.sim import hallway as hw
+from kfcourse.sim import hallway_world as hw
 
 pytestmark = pytest.mark.fact  # states facts of seeded runs: repeated under other rounding (tests/facts.py)
 

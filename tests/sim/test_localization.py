@@ -9,7 +9,8 @@ import numpy as np
 import pytest
 
 import kfcourse as kf
-from kfcourse.sim.localization import SIG0, _steps_in_common, loop_world
+from kfcourse.sim.capstone_world import SIG0, loop_world
+from kfcourse.sim.landmark_lap import _steps_in_common
 
 pytestmark = pytest.mark.fact  # states facts of seeded runs: repeated under other rounding (tests/facts.py)
 

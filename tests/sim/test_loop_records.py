@@ -14,7 +14,8 @@ import pytest
 
 import kfcourse as kf
 from kfcourse.demos.landmark_loop import GATE
-from kfcourse.sim.localization import BEARING_STD, RANGE_STD, UKF_LAM
+from kfcourse.sim.capstone_world import BEARING_STD, RANGE_STD
+from kfcourse.sim.loop_filters import UKF_LAM
 
 pytestmark = pytest.mark.fact  # states facts of seeded runs: repeated under other rounding (tests/facts.py)
 

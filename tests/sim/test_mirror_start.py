@@ -14,7 +14,7 @@ import numpy as np
 import pytest
 
 import kfcourse as kf
-from kfcourse.sim.localization import BEARING_STD, RANGE_STD
+from kfcourse.sim.capstone_world import BEARING_STD, RANGE_STD
 
 # Facts of seeded runs that chapter 11 states and checks too, and every repeat runs the chapter: here they run
 # once (slow: 20 laps without labels each).

@@ -7,7 +7,7 @@ import numpy as np
 import pytest
 
 import kfcourse as kf
-from kfcourse.sim.particle_hallway import (
+from kfcourse.sim.particle_hallway_run import (
     hallway_particles_predict,
     hallway_particles_weight,
     particle_histogram,

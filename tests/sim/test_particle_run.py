@@ -13,7 +13,7 @@ import numpy as np
 import pytest
 
 import kfcourse as kf
-from kfcourse.sim.localization import BEARING_STD, RANGE_STD
+from kfcourse.sim.capstone_world import BEARING_STD, RANGE_STD
 
 pytestmark = pytest.mark.fact  # states facts of seeded runs: repeated under other rounding (tests/facts.py)
 
@@ -166,7 +166,7 @@ def test_localized_is_one_test_for_every_filter():
     assert kf.sim.localized(SimpleNamespace(t=pf.t, error=error))
     assert not kf.sim.localized(pf, bound=0.001) and kf.sim.localized(pf, bound=10.0)
     ekf = kf.sim.landmark_loop(0)  # a Kalman filter's run, no laps field: one lap
-    assert kf.sim.localized(ekf) == bool((ekf.error[-30:] < kf.sim.particle.LOCALIZED).all())
+    assert kf.sim.localized(ekf) == bool((ekf.error[-30:] < kf.sim.particle_lap.LOCALIZED).all())
     two = kf.sim.particle_loop(0, n_particles=100, laps=2)  # the last quarter of one lap, not of both
     assert kf.sim.localized(SimpleNamespace(t=two.t, error=two.error, laps=2)) == bool((two.error[-30:] < 0.5).all())
     short = SimpleNamespace(t=np.arange(3.0), error=np.array([9.0, 9.0, 0.1]))  # shorter than 4 steps: the last

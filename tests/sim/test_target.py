@@ -10,6 +10,7 @@ import pytest
 
 import kfcourse as kf
 from kfcourse.models import constant_velocity
+from kfcourse.sim.scores import nees, nees_band
 from kfcourse.sim.target import (
     DT,
     SPEED,
@@ -21,8 +22,6 @@ from kfcourse.sim.target import (
     TrackBatch,
     filter_target,
     filter_tracks,
-    nees,
-    nees_band,
     process_noise,
     roughness,
     simulate_target,

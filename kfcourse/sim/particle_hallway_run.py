@@ -1,6 +1,6 @@
 """Chapter 1's hallway with a particle filter beside the histogram filter (chapter 11).
 
-The same corridor, doors, motion and door sensor as :mod:`kfcourse.sim.hallway`, and the same
+The same corridor, doors, motion and door sensor as :mod:`kfcourse.sim.hallway_world`, and the same
 readings for the same seed.  Beside the histogram's bars runs a cloud of particles, each one a
 guess of the cell the robot is in: it moves by sampling the motion model, is weighted by the
 door sensor's likelihood of the reading, and is resampled.  Counting the particles in each cell
@@ -16,8 +16,8 @@ import numpy as np
 from .. import _validate as v
 from ..filters.bayes import BOUNDARIES
 from ..filters.particle import effective_sample_size, normalise, resample_systematic
-from .hallway import MOTION_RELIABILITY, SENSOR_RELIABILITY, door_likelihood, simulate_hallway
-from .particle import PF_STREAM
+from .hallway_world import MOTION_RELIABILITY, SENSOR_RELIABILITY, door_likelihood, simulate_hallway
+from .particle_lap import PF_STREAM
 from .records import Record
 
 
@@ -107,7 +107,7 @@ def simulate_particle_hallway(
     boundary: str = "wrap",
     seed: int = 0,
 ) -> ParticleHallwayRun:
-    """The hallway run of :func:`~kfcourse.sim.hallway.simulate_hallway`, with a particle filter beside it.
+    """The hallway run of :func:`~kfcourse.sim.hallway_world.simulate_hallway`, with a particle filter beside it.
 
     The world (start cell, moves, readings) and the bars are that run's, draw for draw.  The
     particles start spread uniformly over the cells (the flat belief) and, on every reading:

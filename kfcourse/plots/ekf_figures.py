@@ -13,7 +13,7 @@ from matplotlib.text import Text
 from .. import _validate as v
 from . import palette
 from .artists import covariance_ellipse, landmarks
-from .curves import (
+from .curve_panels import (
     FunctionPanels,
     axis_range,
     function_panels,
@@ -228,7 +228,7 @@ def linearization_view(
 
 def update_linearization_view(view: LinearizationView, model) -> None:
     """Show ``model`` (an input N(m, s²) through f, such as
-    :class:`kfcourse.sim.curves.GaussianThroughCurve`) on a picture made by :func:`linearization_view`.
+    :class:`kfcourse.sim.curve_functions.GaussianThroughCurve`) on a picture made by :func:`linearization_view`.
 
     ``model`` needs ``m``, ``s``, ``function`` (a key of the view's ``output_limits``),
     ``f`` and ``df`` (f and f'), ``samples()`` (the true output) and ``ekf()`` (the

@@ -1,4 +1,4 @@
-r"""The particle filter on the capstone's loop: chapter 10's world, a cloud of weighted poses (chapter 11).
+r"""A lap of chapter 11: the particle filter follows the robot round the capstone's loop, a cloud of weighted poses.
 
 :func:`particle_loop` drives the robot of :func:`~kfcourse.sim.loop_world` round the map, draw for
 draw the world of chapter 10's EKF and UKF for the same seed, and follows it with the steps of
@@ -35,9 +35,9 @@ from ..filters.particle import (
     resample_stratified,
     resample_systematic,
 )
-from .localization import BEARING_STD, OMEGA_STD, RANGE_STD, SIG0, V_STD, _noise_scale, loop_world
+from .capstone_world import SIG0, _noise_scale, filter_noise, loop_world
 from .records import Record
-from .target import nees
+from .scores import nees
 
 RESAMPLERS = {
     "multinomial": resample_multinomial,
@@ -128,12 +128,16 @@ def localized(run, bound: float = LOCALIZED) -> bool:
     return bool((np.asarray(run.error)[T - quarter :] < bound).all())
 
 
-def _map_box(landmarks: np.ndarray) -> np.ndarray | None:
-    """The map's bounding box [[x_min, x_max], [y_min, y_max]], where a lost robot may be; None if it has no area."""
-    if len(landmarks) == 0:
-        return None
-    box = np.stack([landmarks.min(axis=0), landmarks.max(axis=0)], axis=1)
-    return box if (box[:, 0] < box[:, 1]).all() else None
+def _map_box(landmarks: np.ndarray, setting: dict) -> np.ndarray | None:
+    """The map's bounding box [[x_min, x_max], [y_min, y_max]], where a lost robot may be; None if it has no area,
+    which a ``setting`` that needs the box (a global start, injection) may not have."""
+    box = None
+    if len(landmarks):
+        box = np.stack([landmarks.min(axis=0), landmarks.max(axis=0)], axis=1)
+        box = box if (box[:, 0] < box[:, 1]).all() else None
+    if box is None and (setting["global_start"] or setting["injection"] == "augmented" or setting["injection"] > 0):
+        raise ValueError("landmarks must span a box of some width and height for a global start or injection")
+    return box
 
 
 def particle_loop(
@@ -155,70 +159,72 @@ def particle_loop(
 ) -> ParticleRun:
     r"""Drive the loop of chapter 10 and follow the robot with a particle filter.
 
-    The world is :func:`~kfcourse.sim.loop_world`'s for this seed, draw for draw: the truth,
-    the odometry and the readings are those :func:`~kfcourse.sim.landmark_loop` gives the EKF
-    and the UKF.  The filter's own draws (the start, the prediction's noise, resampling and
-    injection) come from a second generator, ``np.random.default_rng([seed, PF_STREAM])``, so
-    they leave the world's untouched.  The filter's M and Q are the world's noise.
+    The world is :func:`~kfcourse.sim.loop_world`'s for this seed, draw for draw: the truth, the odometry and the
+    readings are those :func:`~kfcourse.sim.landmark_loop` gives the EKF and the UKF.  The filter's own draws (the
+    start, the prediction's noise, resampling and injection) come from a second generator,
+    ``np.random.default_rng([seed, PF_STREAM])``, so they leave the world's untouched.  Its M and Q are the world's.
 
-    Each step (equations (1)-(8) of :mod:`kfcourse.filters.particle`): predict every particle
-    with the odometry, weigh it by all the readings in view, normalise, estimate the mean and
-    covariance of the weighted cloud, then resample if :math:`N_{\text{eff}} < N/2` and, after
-    resampling, replace ``injection`` of the particles by random poses.  Resampling only when
-    the weights are uneven: when they are nearly equal, resampling would only copy some
-    particles and drop others at random, and lose variety for nothing.
-
-    Introduced in chapter 11.
+    Each step (equations (1)-(8) of :mod:`kfcourse.filters.particle`, listed in this module's docstring): predict,
+    weigh by all the readings in view, normalise, estimate, then resample if :math:`N_{\text{eff}} < N/2` (resampling
+    nearly equal weights would only copy some particles and drop others at random, and lose variety for nothing) and,
+    after resampling, replace ``injection`` of the particles by random poses.  Introduced in chapter 11.
 
     Parameters
     ----------
     seed : int
         Seed of the world's noise and of the filter's draws (>= 0).
-    n_particles : int
-        N, from 1 to :data:`MAX_PARTICLES`.
-    resample : {"multinomial", "stratified", "systematic"}
-        The resampling scheme.
+    n_particles, resample : int, {"multinomial", "stratified", "systematic"}
+        N, from 1 to :data:`MAX_PARTICLES`; the resampling scheme.
     global_start : bool
-        False: the cloud starts at the true start, spread by :data:`~kfcourse.sim.localization.SIG0`
-        (as the EKF of chapter 10).  True: the start is unknown, and the cloud starts uniform over
-        the map's bounding box and every heading.
+        False: the cloud starts at the true start, spread by :data:`~kfcourse.sim.capstone_world.SIG0` (as the EKF of
+        chapter 10).  True: the start is unknown; the cloud starts uniform over the map's bounding box, any heading.
     starts : array_like, shape (K, 3), optional
-        The poses the robot may have started from, each as likely (one of K docks): the cloud
-        starts as N particles split as evenly as possible among them, each group spread by
-        :data:`~kfcourse.sim.localization.SIG0` around its pose.  By default the true start alone.
-        Not with ``global_start``.
+        The poses the robot may have started from, each as likely (one of K docks): N particles split as evenly as
+        possible among them, each group spread by :data:`~kfcourse.sim.capstone_world.SIG0` around its pose.  By
+        default the true start alone.  Not with ``global_start``.
     labelled : bool
-        True: each reading comes with the landmark it came from, equation (3).  False: the
-        filter is not told, and a reading may come from any landmark of the map, equation (3').
-        On a map that looks the same from two poses the belief then has two equal peaks; the
-        cloud keeps both only where it holds particles at both (``starts``), while a global start
+        True: each reading comes with the landmark it came from, equation (3).  False: a reading may come from any
+        landmark of the map, equation (3').  On a map that looks the same from two poses the belief then has two
+        equal peaks; the cloud keeps both only where it holds particles at both (``starts``), while a global start
         keeps one, by luck (chapter 11).
     kidnap : int, optional
         At this step the true robot is carried half a lap further on; the filter is not told.
     injection : float or "augmented"
-        Share of the particles replaced by poses uniform over the map's box after each
-        resampling, from 0 to 1; or ``"augmented"``, Thrun's augmented MCL: the share is
-        :math:`\max(0, 1 - w_{\text{fast}} / w_{\text{slow}})`, where :math:`w_{\text{slow}}` and
-        :math:`w_{\text{fast}}` follow the readings' average likelihood
-        :math:`\sum_i w^{[i]} p(z \mid x^{[i]})` (per reading, so that one landmark more in view
-        changes nothing) at the rates :data:`ALPHA_SLOW` and :data:`ALPHA_FAST`.  It injects
-        when the readings suddenly fit the cloud worse than they used to: when the robot may be lost.
+        Share of the particles replaced by poses uniform over the map's box after each resampling, from 0 to 1; or
+        ``"augmented"``, Thrun's augmented MCL: the share is :math:`\max(0, 1 - w_{\text{fast}} / w_{\text{slow}})`,
+        where :math:`w_{\text{slow}}` and :math:`w_{\text{fast}}` follow the readings' average likelihood
+        :math:`\sum_i w^{[i]} p(z \mid x^{[i]})` (per reading, so that one landmark more in view changes nothing) at
+        the rates :data:`ALPHA_SLOW` and :data:`ALPHA_FAST`.  It injects when the readings suddenly fit the cloud
+        worse than they used to: when the robot may be lost.
     dropout : (int, int), optional
         The sensor is blind for the steps ``t0 <= k < t1``.
     motion_noise, sensor_noise : float
-        Scale of the odometry noise (0.1 m/s, 0.05 rad/s at 1) and the reading noise (0.1 m,
-        0.03 rad at 1), from 0.01 to 100; the world's and the filter's alike.
-    laps : int
-        Times round the loop (>= 1).
-    landmarks : array_like, shape (L, 2), optional
-        The map (m); by default :data:`~kfcourse.sim.DEFAULT_LANDMARKS`.
-    sensor_range : float
-        Largest range at which a landmark is seen (m), > 0.
+        Scale of the odometry noise (0.1 m/s, 0.05 rad/s at 1) and the reading noise (0.1 m, 0.03 rad at 1), from
+        0.01 to 100; the world's and the filter's alike.
+    laps, landmarks, sensor_range : int, array_like (L, 2) or None, float
+        Times round the loop (>= 1); the map (m), by default :data:`~kfcourse.sim.DEFAULT_LANDMARKS`; the largest
+        range at which a landmark is seen (m, > 0).
 
     Returns
     -------
     ParticleRun
     """
+    setting = _settings(
+        seed, n_particles, resample, global_start, starts, labelled, injection, motion_noise, sensor_noise
+    )
+    drive = {"sensor_range": sensor_range, "laps": laps, "kidnap": kidnap, "dropout": dropout}
+    world = loop_world(setting["seed"], setting["motion_noise"], setting["sensor_noise"], landmarks, **drive)
+    box = _map_box(world.landmarks, setting)
+    rng = np.random.default_rng([setting["seed"], PF_STREAM])
+    setting["starts"], x = _start_cloud(world, setting, box, rng)
+    lap = _follow_cloud(world, x, box, rng, setting)
+    return _particle_run(world, box, lap, **setting, laps=int(laps))
+
+
+def _settings(
+    seed, n_particles, resample, global_start, starts, labelled, injection, motion_noise, sensor_noise
+) -> dict:
+    """The settings of :func:`particle_loop`, checked, by the names of :class:`ParticleRun`'s fields."""
     seed = v.whole(seed, "seed", 0)
     N = v.whole(n_particles, "n_particles", 1)
     if N > MAX_PARTICLES:
@@ -239,23 +245,38 @@ def particle_loop(
     injection = injection if augmented else v.probability(injection, "injection")
     motion_noise = _noise_scale(motion_noise, "motion_noise")
     sensor_noise = _noise_scale(sensor_noise, "sensor_noise")
-    drive = {"sensor_range": sensor_range, "laps": laps, "kidnap": kidnap, "dropout": dropout}
-    world = loop_world(seed, motion_noise, sensor_noise, landmarks, **drive)
-    box = _map_box(world.landmarks)
-    if box is None and (global_start or augmented or injection > 0):
-        raise ValueError("landmarks must span a box of some width and height for a global start or injection")
-    M = np.diag([motion_noise * V_STD, motion_noise * OMEGA_STD]) ** 2  # the odometry noise
-    Q = np.diag([sensor_noise * RANGE_STD, sensor_noise * BEARING_STD]) ** 2  # the reading noise
-    rng = np.random.default_rng([seed, PF_STREAM])
+    return {
+        "seed": seed,
+        "n_particles": N,
+        "resample": resample,
+        "global_start": global_start,
+        "starts": starts,
+        "labelled": labelled,
+        "injection": injection,
+        "motion_noise": motion_noise,
+        "sensor_noise": sensor_noise,
+    }
 
+
+def _start_cloud(world, setting: dict, box, rng) -> tuple[np.ndarray | None, np.ndarray]:
+    """The poses the cloud starts around (None for a global start) and its N particles at the start, drawn from rng."""
+    N, starts = setting["n_particles"], setting["starts"]
+    if setting["global_start"]:  # the start unknown: anywhere in the map's box, any heading
+        return None, inject_random(np.zeros((N, 3)), 1.0, box, rng)
+    # one of K known poses (chapter 10's filters know the true one): N/K particles round each
+    starts = world.start[None] if starts is None else starts
+    K = len(starts)
+    groups = np.repeat(starts, N // K + (np.arange(K) < N % K), axis=0)  # N rows, as even as can be
+    return starts, groups + rng.multivariate_normal(np.zeros(3), SIG0, size=N)
+
+
+def _follow_cloud(world, x: np.ndarray, box, rng, setting: dict) -> dict:
+    """The particle filter's lap over ``world`` from the cloud ``x``: one step of equations (1)-(8) per step of the
+    world (see the module's docstring); its arrays by the names of :class:`ParticleRun`'s fields."""
+    N, labelled, injection = setting["n_particles"], setting["labelled"], setting["injection"]
+    resampler, augmented = RESAMPLERS[setting["resample"]], injection == "augmented"
+    M, Q = filter_noise(setting["motion_noise"], setting["sensor_noise"])  # the odometry noise, the reading noise
     T = len(world.t)
-    if global_start:  # the start unknown: anywhere in the map's box, any heading
-        starts, x = None, inject_random(np.zeros((N, 3)), 1.0, box, rng)
-    else:  # one of K known poses (chapter 10's filters know the true one): N/K particles round each
-        starts = world.start[None] if starts is None else starts
-        K = len(starts)
-        groups = np.repeat(starts, N // K + (np.arange(K) < N % K), axis=0)  # N rows, as even as can be
-        x = groups + rng.multivariate_normal(np.zeros(3), SIG0, size=N)
     cloud, weights = np.empty((T, N, 3), dtype=np.float32), np.empty((T, N), dtype=np.float32)
     ess, resampled, injected = np.empty(T), np.zeros(T, dtype=bool), np.zeros(T, dtype=int)
     mu, Sig = np.empty((T, 3)), np.empty((T, 3, 3))
@@ -274,7 +295,7 @@ def particle_loop(
         cloud[k], weights[k], ess[k] = x, w, effective_sample_size(w)  # (5)
         mu[k], Sig[k] = pf_estimate(x, w)  # (7)
         if ess[k] < N / 2:
-            x, log_w, resampled[k] = x[RESAMPLERS[resample](w, rng)], np.zeros(N), True  # (6): every weight 1/N
+            x, log_w, resampled[k] = x[resampler(w, rng)], np.zeros(N), True  # (6): every weight 1/N
             share = injection
             if augmented:  # the readings fit worse lately than in the long run: the robot may be lost
                 share = min(1.0, max(0.0, 1.0 - w_fast / w_slow)) if w_slow else 0.0
@@ -283,6 +304,21 @@ def particle_loop(
         else:
             log_w = log_w - log_w.max()  # keep the weights (the largest as 0, so the sum never drifts off)
 
+    return {
+        "particles": cloud,
+        "w": weights,
+        "ess": ess,
+        "resampled": resampled,
+        "injected": injected,
+        "mu": mu,
+        "Sig": Sig,
+    }
+
+
+def _particle_run(world, box, lap: dict, **setting) -> ParticleRun:
+    """The record of one lap: the world, the cloud's lap (:func:`_follow_cloud`), the truth measured against it,
+    and the settings."""
+    mu, Sig = lap["mu"], lap["Sig"]
     err = world.truth[:, :2] - mu[:, :2]
     position_nees = nees(world.truth[:, :2], mu[:, :2], Sig[:, :2, :2])
     return ParticleRun(
@@ -295,26 +331,11 @@ def particle_loop(
         visible=world.visible,
         start=world.start,
         bounds=box,
-        starts=starts,
-        particles=cloud,
-        w=weights,
-        ess=ess,
-        resampled=resampled,
-        injected=injected,
-        mu=mu,
-        Sig=Sig,
+        **lap,
         error=np.linalg.norm(err, axis=1),
         inside=position_nees <= 9.0,
         nees=position_nees,
-        n_particles=N,
-        resample=resample,
-        global_start=global_start,
-        labelled=labelled,
         kidnap=world.kidnap,
-        injection=injection,
         dropout=world.dropout,
-        motion_noise=motion_noise,
-        sensor_noise=sensor_noise,
-        laps=int(laps),
-        seed=seed,
+        **setting,
     )

@@ -27,7 +27,7 @@ from matplotlib.ticker import FormatStrFormatter, MaxNLocator
 
 from . import palette
 from .artists import belief_bars, update_belief_bars
-from .hallway import BARS_SHARE, TOP_STEP, hallway_map
+from .hallway_view import BARS_SHARE, TOP_STEP, hallway_map
 from .style import new_figure
 
 JITTER_DOTS = 5000  # jitter positions made once; a larger cloud reuses them

@@ -8,9 +8,9 @@ import ipywidgets as widgets
 import numpy as np
 
 from ..plots import palette
-from ..plots.localization import association_view, update_association
+from ..plots.localization_figures import association_view, update_association
 from ..plots.style import FigureRenderer
-from ..sim.association import association_scan, gated_update
+from ..sim.scan import association_scan, gated_update
 from ._base import Demo, button, slider
 
 GATE = 3.0  # standard deviations: the default validation gate

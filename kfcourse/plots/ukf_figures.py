@@ -16,7 +16,7 @@ from .. import _validate as v
 from ..filters.gaussian import gaussian_pdf
 from . import palette
 from .artists import landmarks
-from .curves import (
+from .curve_panels import (
     FunctionPanels,
     axis_range,
     function_panels,
@@ -124,7 +124,7 @@ def filter_comparison_chart(ekf, ukf):
     Parameters
     ----------
     ekf, ukf : object with ``t, truth, landmarks, mu, error``
-        Run records such as :class:`kfcourse.sim.localization.LoopRun`, for the
+        Run records such as :class:`kfcourse.sim.LoopRun`, for the
         same drive (the same ``t`` and ``truth``).
 
     Returns
@@ -294,7 +294,7 @@ def sigma_points_view(
 def update_sigma_points_view(view: SigmaPointsView, model) -> None:
     """Show ``model`` on a picture made by :func:`sigma_points_view`.
 
-    ``model`` needs what :func:`kfcourse.plots.ekf.update_linearization_view` reads (``m``,
+    ``model`` needs what :func:`kfcourse.plots.ekf_figures.update_linearization_view` reads (``m``,
     ``s``, ``function``, ``f``, ``df``, ``samples()``, ``ekf()``), and ``sigma_points()``
     (the three points and their weights), ``ukf()`` (the UKF's mean and variance) and
     ``exact()`` (the exact mean and variance, or None where unknown).
