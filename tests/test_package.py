@@ -242,11 +242,12 @@ def test_the_nees_is_computed_in_one_place():
         if re.search(r"linalg\.(solve|pinv|inv)\(", p.read_text()) and p.name != "scores.py"
     ]
     assert found == ["kfcourse/sim/target.py"] and "K = Sig_bar H^T S^-1" in (PACKAGE / "sim/target.py").read_text()
-    runs = [kf.sim.landmark_loop(0), kf.sim.particle_loop(0, n_particles=200), kf.sim.run_ekf(seed=0)]
-    for run in runs:
-        assert np.array_equal(run.nees if hasattr(run, "nees") else run.inside, _nees_of(run, hasattr(run, "nees")))
+    for lap in (kf.sim.landmark_loop(0), kf.sim.particle_loop(0, n_particles=200)):
+        assert np.array_equal(lap.nees, position_nees(lap))
+    ekf = kf.sim.run_ekf(seed=0)  # chapter 7's runs keep only whether the truth is inside the 3σ ellipse
+    assert np.array_equal(ekf.inside, position_nees(ekf) <= 9.0)
 
 
-def _nees_of(run, whole: bool):
-    d2 = kf.sim.nees(run.truth[:, :2], run.mu[:, :2], run.Sig[:, :2, :2])
-    return d2 if whole else d2 <= 9.0
+def position_nees(run) -> np.ndarray:
+    """kf.sim.nees of a run's position at every step."""
+    return kf.sim.nees(run.truth[:, :2], run.mu[:, :2], run.Sig[:, :2, :2])

@@ -211,7 +211,7 @@ def simulate_hallway(
     ps = v.probability(sensor_reliability, "sensor_reliability")
     if boundary not in BOUNDARIES:
         raise ValueError(f"boundary must be one of {BOUNDARIES}, got {boundary!r}")
-    door_map = hallway_doors() if doors is None else v.flags(doors, "doors")
+    door_map = hallway_doors() if doors is None else _door_map(doors)
     if door_map.ndim != 2 or door_map.shape[0] != 2:
         raise ValueError(f"doors must have shape (2, n_cells), got {door_map.shape}")
     n = door_map.shape[1]
