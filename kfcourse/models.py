@@ -45,17 +45,27 @@ def wrap_angle(a):
     """
     a = v.finite(a, "a")
     # a - 2 pi k with k chosen for (-pi, pi]; angles already in range are returned unchanged.
-    # The modulo keeps huge angles in range (a - 2 pi ceil(...) did not beyond ~1e16), and it
-    # can round up to exactly 2 pi, which would give -pi: that end maps to pi.
+    # An angle within a turn of the range (as a difference of two wrapped angles is) takes one
+    # turn, 2 pi, back towards it: exact in floating point, as a and 2 pi are within a factor 2.
+    # Farther ones take the modulo, which keeps even huge angles in range; it can round up to
+    # exactly 2 pi, which would give -pi: that end maps to pi.
     if a.ndim == 0:  # one angle, on a Python float: Python's % rounds as np.mod does, bit for bit
         x = float(a)
-        out = x if -math.pi < x <= math.pi else math.pi - (math.pi - x) % (2.0 * math.pi)
+        if -math.pi < x <= math.pi:
+            return x
+        once = x - math.copysign(2.0 * math.pi, x)  # one turn back
+        if -math.pi < once <= math.pi:
+            return once
+        out = math.pi - (math.pi - x) % (2.0 * math.pi)
         return math.pi if out <= -math.pi else out
-    out = a.copy()
-    outside = ~((a > -np.pi) & (a <= np.pi))
-    if outside.any():  # only the angles out of range are computed
-        wrapped = np.pi - np.mod(np.pi - a[outside], 2.0 * np.pi)
-        out[outside] = np.where(wrapped <= -np.pi, np.pi, wrapped)
+    above, below = a > np.pi, a <= -np.pi
+    if not (above.any() or below.any()):
+        return a.copy()
+    out = a - np.where(above, 2.0 * np.pi, np.where(below, -2.0 * np.pi, 0.0))  # one turn back (in range: a - 0)
+    far = (out > np.pi) | (out <= -np.pi)
+    if far.any():  # more than a turn out: the modulo
+        wrapped = np.pi - np.mod(np.pi - a[far], 2.0 * np.pi)
+        out[far] = np.where(wrapped <= -np.pi, np.pi, wrapped)
     return out
 
 

@@ -99,6 +99,17 @@ def test_wrap_angle_array_elementwise(angles):
     np.testing.assert_array_equal(w, [kf.wrap_angle(x) for x in angles])
 
 
+@FAST
+@given(a=reals(-3 * math.pi, 3 * math.pi))
+@example(a=-6.113747517288847)  # the modulo's pi - ((pi - a) mod 2 pi) rounds this one in its last bit
+def test_an_angle_within_a_turn_of_the_range_takes_exactly_one_turn(a):
+    """(pi, 3 pi] and (-3 pi, -pi] come back by one 2 pi, with no rounding: a and 2 pi are within a factor 2."""
+    turns = 0.0 if -math.pi < a <= math.pi else math.copysign(TWO_PI, a)
+    if -math.pi < a - turns <= math.pi:
+        assert kf.wrap_angle(a) == a - turns
+        assert kf.wrap_angle(np.array([a]))[0] == a - turns
+
+
 def _edge_angles() -> np.ndarray:
     """Angles at and next to the ends of (-pi, pi] and its copies, huge ones, and ones whose mod rounds to 2 pi."""
     ends = np.array([k * math.pi for k in range(-9, 10)] + [1e16, -1e16, 1e300, -1e300, 2.0**53, -(2.0**53)])
