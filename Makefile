@@ -46,27 +46,26 @@ restore:
 	@$(PYTHON) tools/course.py restore --work '$(WORK)' --chapter '$(CH)'
 
 # The tests, two workers (one file at a time: a notebook's cells share its kernel), in passes:
-#  1. every test and every notebook once, the browser suite apart;
+#  1. every test and every notebook once, the browser suite apart (the notebooks first: the
+#     longest files start early, so neither worker waits long on the other at the end);
 #  2. the facts of seeded runs again (tests marked `fact` and every notebook, the `slow` ones
-#     apart: tests/facts.py): once for each numpy SIMD level below this CPU's
-#     (tests/simd_levels.py: another CPU's rounding), then with every noise draw scaled by
-#     1 +- 1e-12 (tests/rounding.py). What they state must hold in every run;
+#     apart: tests/facts.py), as another CPU's rounding, perturbed (tests/repeats.py): once for
+#     each numpy SIMD level below this CPU's (once as this CPU if there is none), with every noise
+#     draw scaled by 1 + 1e-12 (1 - 1e-12 in a second repeat: tests/rounding.py). What they state must hold;
 #  3. the browser suite.
 # Each pass writes its timings to $(TIMES); the last line prints the 15 slowest tests of all.
 PYTEST   := $(BIN)/pytest -n 2 --dist loadfile --nbval-lax --nbval-current-env --nbval-cell-timeout=120
 TIMES    := .test-times
-REPEAT   := $(PYTEST) -m "fact and not slow and not browser" tests notebooks
+REPEAT   := $(PYTEST) -m "fact and not slow and not browser" notebooks tests
 
 test: $(STAMP) lint $(AXE)
 	@rm -rf $(TIMES) && mkdir -p $(TIMES)
-	$(PYTEST) -m "not browser" --junitxml=$(TIMES)/1-main.xml tests notebooks
-	@$(BIN)/python -m tests.simd_levels | while read -r off; do \
-	  echo "NPY_DISABLE_CPU_FEATURES=\"$$off\" $(REPEAT)"; \
-	  NPY_DISABLE_CPU_FEATURES="$$off" $(REPEAT) --junitxml="$(TIMES)/2-simd-$${off%% *}.xml" || exit 1; \
+	$(PYTEST) -m "not browser" --junitxml=$(TIMES)/1-main.xml notebooks tests
+	@$(BIN)/python -m tests.repeats | while IFS=';' read -r name off size; do \
+	  echo "NPY_DISABLE_CPU_FEATURES=\"$$off\" $(REPEAT) --perturb=$$size"; \
+	  NPY_DISABLE_CPU_FEATURES="$$off" $(REPEAT) --perturb=$$size --junitxml="$(TIMES)/2-repeat-$$name.xml" || exit 1; \
 	done
-	$(REPEAT) --perturb=1e-12 --junitxml=$(TIMES)/3-perturb-up.xml
-	$(REPEAT) --perturb=-1e-12 --junitxml=$(TIMES)/3-perturb-down.xml
-	$(BIN)/pytest -m browser --junitxml=$(TIMES)/4-browser.xml tests/browser
+	$(BIN)/pytest -m browser --junitxml=$(TIMES)/3-browser.xml tests/browser
 	@$(BIN)/python -m tests.slowest $(TIMES)
 
 # For every day: lint, the unit tests (not the facts of seeded runs, the slow or the browser ones: tests/facts.py),

@@ -1,10 +1,10 @@
 """Which tests state facts of seeded runs: the ``fact`` marker, its guard, and a runner for planted tests.
 
 A test marked ``fact`` states something about a run built on seeded random draws (a count, a
-bound, a verdict).  ``make test`` runs every such test, and every notebook, again under
-numpy's lower SIMD levels (``tests/simd_levels.py``: another CPU's rounding) and with every
-normal draw scaled by ``1 ± 1e-12`` (``tests/rounding.py``): what it states must hold in every
-repeat.  The repeats select by the marker (``-m fact``), not by folder.
+bound, a verdict).  ``make test`` runs every such test, and every notebook, again as
+another CPU's rounding (``tests/repeats.py``: numpy's lower SIMD levels) with every normal draw
+scaled by ``1 ± 1e-12`` (``tests/rounding.py``): what it states must hold in every repeat.  The
+repeats select by the marker (``-m fact``), not by folder.
 
 **The guard.** In a run without ``--perturb``, every test that makes a seeded generator
 (``np.random.default_rng``, which every simulation, demo model and particle filter of the

@@ -7,7 +7,7 @@ Each test here plants a small test file under ``tests/`` and runs pytest on it i
 from __future__ import annotations
 
 from tests.facts import planted
-from tests.simd_levels import repeats
+from tests.repeats import SIZE, repeats
 
 PLANTED = """
 import pytest
@@ -71,9 +71,12 @@ def test_the_repeats_select_only_the_marked_tests():
     assert outcome["test_marked_run"] == "PASSED", output[-3000:]
 
 
-def test_simd_repeats_are_the_levels_below_this_cpus():
+def test_each_repeat_is_a_level_below_this_cpus_perturbed_with_signs_alternating():
     avx512 = {"X86_V2": True, "X86_V3": True, "X86_V4": True, "AVX512_ICL": True, "AVX512_SPR": False}
-    assert repeats(avx512) == ["X86_V4 AVX512_ICL", "X86_V3 X86_V4 AVX512_ICL"]  # as AVX2, then as the baseline
-    assert repeats({"X86_V2": True, "X86_V3": True, "X86_V4": False}) == ["X86_V3"]
-    assert repeats({"X86_V2": True, "X86_V3": False}) == []  # nothing lower to stand in for
-    assert repeats({"ASIMD": True}) == []  # another architecture
+    assert repeats(avx512) == [  # as AVX2, then as the baseline
+        ("X86_V3", "X86_V4 AVX512_ICL", SIZE),
+        ("x86-64-v2", "X86_V3 X86_V4 AVX512_ICL", -SIZE),
+    ]
+    assert repeats({"X86_V2": True, "X86_V3": True, "X86_V4": False}) == [("x86-64-v2", "X86_V3", SIZE)]
+    assert repeats({"X86_V2": True, "X86_V3": False}) == [("this-cpu", "", SIZE)]  # nothing lower: perturbed only
+    assert repeats({"ASIMD": True}) == [("this-cpu", "", SIZE)]  # another architecture
