@@ -54,6 +54,7 @@ MISTAKES = {
     "atan_not_atan2": "atan is used instead of atan2",
     "atan2_arguments_swapped": "atan2's arguments are swapped: it takes (Δy, Δx)",
     "robot_minus_landmark": "Δx and Δy point from the landmark to the robot (robot minus landmark)",
+    "wrap_shifted_by_pi": "the angle is wrapped by (φ mod 2π) − π, which also turns it by π",
     "heading_sign": "the heading θ enters with the wrong sign",
     "degrees": "an angle is in degrees where radians belong",
     "outputs_swapped": "the outputs are returned in the wrong order",
@@ -65,6 +66,7 @@ MISTAKES = {
     "divides_by_omega": "divides by ω, with no straight-line limit at ω = 0",
     "euler_step": "the pose moves in a straight line even while turning",
     "exact_zero_test": "ω is compared with exactly 0, so a tiny ω still goes through V/ω",
+    "straight_too_wide": "the straight-line branch is taken where V/ω is still exact",
     "sin_cos_swapped": "sin and cos are swapped",
     "heading_without_dt": "the heading turns by ω instead of ωΔt",
     "speed_not_distance": "the speed V is used where the distance VΔt belongs",
@@ -115,6 +117,8 @@ MISTAKES = {
     "weights_returned_too": "the new weights are returned beside the indices",
     "float_indices": "the indices are floats, and particles[indices] needs integers",
     "ignores_rng": "the random draws do not come from the rng given, so the same rng gives other particles",
+    "stratified_not_systematic": "this is stratified resampling (one offset per slot), a right scheme, but the "
+    "exercise asks for systematic resampling (one offset for all)",
 }
 
 
@@ -334,32 +338,37 @@ def _paired(outcome, expected, pair: Callable | None):
         return outcome
 
 
-def _likely_mistake(student_fn, variants, cases, expected, number, returns, pair) -> Variant | None:
-    """The first known wrong version that reproduces the student's outcome on case ``number``.
+def _likely_mistakes(student_fn, variants, cases, expected, number, returns, pair) -> list[Variant]:
+    """The known wrong versions that give the student's outcome on every case, the first of each mistake.
 
-    It reproduces it when it gives the same values there, or the same error.  When the
-    student's function raised there in words of its own (another way to write the same
-    product), a variant that raises the same kind of error there and gives the student's
-    values on every case where the student's function returns also reproduces it.
+    Two mistakes can agree on one case (where c mu equals mu_bar, z - mu_bar and z - c mu are the same
+    number), so a wrong version counts only when it agrees with the student's function on all the
+    cases, those it passes and those it fails: a wrong name is worse than none.  They agree on a case
+    when they give the same values there, or both raise the same kind of error (the student's in words
+    of its own, say, where the variant divides by zero).  Case ``number``, the first that fails, is tried
+    first: it tells most variants apart at once.  Two different mistakes that agree on every case
+    cannot be told apart by any answer: both are returned, and the verdict names neither.
     """
 
     def run(fn, i):
         return _paired(_quietly(fn, cases[i]), expected[i], pair)
 
-    mine = run(student_fn, number)
+    student = {}
+
+    def agrees(variant, i) -> bool:
+        if i not in student:
+            student[i] = run(student_fn, i)
+        mine, theirs = student[i], run(variant.fn, i)
+        if mine[0] == theirs[0] == "raised":
+            return type(mine[1]) is type(theirs[1])
+        return _same_outcome(theirs, mine, returns)
+
+    order = [number, *(i for i in range(len(cases)) if i != number)]
+    found = {}
     for variant in variants:
-        if _same_outcome(run(variant.fn, number), mine, returns):
-            return variant
-    if mine[0] != "raised":
-        return None
-    student = [run(student_fn, i) for i in range(len(cases))]
-    returned = [i for i, outcome in enumerate(student) if outcome[0] == "returned"]
-    for variant in variants:
-        theirs = run(variant.fn, number)
-        if returned and theirs[0] == "raised" and type(theirs[1]) is type(mine[1]):
-            if all(_same_outcome(run(variant.fn, i), student[i], returns) for i in returned):
-                return variant
-    return None
+        if variant.mistake not in found and all(agrees(variant, i) for i in order):
+            found[variant.mistake] = variant
+    return list(found.values())
 
 
 def _gap(expected, got, returns: tuple[str, ...]) -> float:
@@ -398,8 +407,8 @@ def run_check(
     cases : list of Case
         The first is the chapter's worked example, where the chapter has one.
     variants : list of Variant
-        Known wrong versions; the first that reproduces the student's answer on
-        the first failing case names the mistake.
+        Known wrong versions; one that gives the student's answer on every case
+        names the mistake, when no other mistake does (:func:`_likely_mistakes`).
     returns : tuple of str
         Names of the returned values (one name: a single value, not a tuple).
     where : str
@@ -446,10 +455,14 @@ def run_check(
         else:
             details += "\ngot:\n" + _block(_named(outcome[1], returns))
         mistake, hint = None, f"No known mistake gives this answer. Compare your code with {where}."
-        variant = _likely_mistake(student_fn, variants, cases, expected, number, returns, pair)
-        if variant is not None:
-            mistake = variant.mistake
-            hint = f"Likely mistake: {MISTAKES[mistake]}. {_sentence(variant.hint)} See {where}."
+        found = _likely_mistakes(student_fn, variants, cases, expected, number, returns, pair)
+        if len(found) == 1:
+            mistake = found[0].mistake
+            hint = f"Likely mistake: {MISTAKES[mistake]}. {_sentence(found[0].hint)} See {where}."
+        elif found:  # no answer tells these apart: name neither, say both
+            either = "; or ".join(MISTAKES[variant.mistake] for variant in found)
+            hint = f"Each of these mistakes gives your answer on every case, and no case tells them apart: {either}. "
+            hint += f"See {where}."
         message = "\n".join([headline, details, hint])
         return CheckResult(False, mistake, message, headline, details, hint)
     if approximation is not None:

@@ -26,8 +26,10 @@ def _pose_and_landmark(rng) -> tuple[np.ndarray, np.ndarray]:
 
 
 def _sensor_cases(rng) -> list[Case]:
-    """The worked example, landmarks straight behind the robot (bearing near ±π), random ones."""
+    """The worked example, a landmark straight ahead (bearing exactly 0: a bearing turned by π lands on the seam ±π,
+    where the two ways of turning it differ), landmarks straight behind the robot (bearing near ±π), random ones."""
     cases = [Case("chapter 7's worked example", state=ROBOT, landmark=LANDMARK)]
+    cases.append(Case("a landmark straight ahead", state=np.array([1.0, 2.0, 0.0]), landmark=np.array([4.0, 2.0])))
     for theta, landmark_angle in [(0.0, np.pi - 0.05), (0.0, -np.pi + 0.05), (3.0, -2.9), (-3.0, 2.9)]:
         landmark = 2.0 * np.array([np.cos(landmark_angle), np.sin(landmark_angle)])
         cases.append(Case("bearing near ±π", state=np.array([0.0, 0.0, theta]), landmark=landmark))
@@ -54,8 +56,10 @@ def _range_bearing_with(state, landmark, *, wrap=True, flip=False, atan2=True, *
     phi = state[2] - angle if flip else angle + (state[2] if wrong("plus_theta") else -state[2])
     if wrong("mod_2pi"):
         phi = phi % (2 * np.pi)
+    elif wrong("shifted_wrap"):
+        phi = phi % (2 * np.pi) - np.pi
     elif wrap:
-        phi = _wrap(phi)
+        phi = models.wrap_angle(phi) if wrap == "(-pi, pi]" else _wrap(phi)
     if wrong("degrees"):
         phi = math.degrees(phi)
     r = dx * dx + dy * dy if wrong("q") else math.hypot(dx, dy)
@@ -106,11 +110,21 @@ def range_bearing(student_fn, seed: int = 0) -> CheckResult:
         _rb_variant(
             "atan2_arguments_swapped", "np.arctan2(y, x) takes the y offset first: atan2(Δy, Δx).", swap_atan2=True
         ),
+        *(
+            _rb_variant(
+                "robot_minus_landmark",
+                "Δx = m_x − x and Δy = m_y − y point from the robot to the landmark; "
+                "the other way round the bearing is off by π.",
+                robot_minus_landmark=True,
+                wrap=wrap,
+            )
+            for wrap in ("(-pi, pi]", "[-pi, pi)")
+        ),
         _rb_variant(
-            "robot_minus_landmark",
-            "Δx = m_x − x and Δy = m_y − y point from the robot to the landmark; "
-            "the other way round the bearing is off by π.",
-            robot_minus_landmark=True,
+            "wrap_shifted_by_pi",
+            "(φ mod 2π) lies in [0, 2π), so (φ mod 2π) − π is in range but turned by π; wrap with "
+            "π − ((π − φ) mod 2π), or kf.wrap_angle.",
+            shifted_wrap=True,
         ),
         _rb_variant("degrees", DEGREES, degrees=True),
         _rb_variant("degrees", DEGREES, degrees=True, wrap=False),
@@ -243,11 +257,14 @@ def range_bearing_jacobian(student_fn, seed: int = 0) -> CheckResult:
 
 
 # ----------------------------------------------------------------------- unicycle
-def _unicycle_with(state, u, dt, *, limit=True, wrap=True, euler=False, y_sign=1.0, sin=np.sin, cos=np.cos, **mistake):
-    """The unicycle model of chapter 8 with the arc formula and an ``ω == 0`` branch, and knobs for the mistakes.
+NEAR_ZERO = 1e-9  # |ω| below which a right answer may drive the straight line: the arc formula is exact above ~1e-6
 
-    Right only where ω is 0 or not tiny: at ω = 1e-15 the arc formula loses its digits (chapter 8).
-    """
+
+def _unicycle_with(
+    state, u, dt, *, limit=NEAR_ZERO, wrap=True, euler=False, y_sign=1.0, sin=np.sin, cos=np.cos, **mistake
+):
+    """The unicycle model of chapter 8 with the arc formula and a straight-line branch for |ω| < ``limit``
+    (``limit=0``: only at ω == 0; ``None``: never), and knobs for the mistakes."""
     wrong = mistake.get
     x, y, theta = state
     V, w = u
@@ -257,7 +274,7 @@ def _unicycle_with(state, u, dt, *, limit=True, wrap=True, euler=False, y_sign=1
     swap = wrong("swap_sin_cos")  # True: everywhere; "arc" or "line": only there
     line_sin, line_cos = (cos, sin) if swap in (True, "line") else (sin, cos)
     arc_sin, arc_cos = (cos, sin) if swap in (True, "arc") else (sin, cos)
-    if euler or (limit and w == 0):  # the straight line
+    if euler or (limit is not None and (w == 0 or abs(w) < limit)):  # the straight line
         x_new, y_new = x + distance * line_cos(theta), y + distance * line_sin(theta)
     else:  # the arc
         x_new = x + V / w * (arc_sin(theta + arc_turn) - arc_sin(theta))
@@ -272,7 +289,9 @@ def _unicycle_in_floats(state, u, dt):
     """The arc in Python floats, no straight-line limit: at ω = 0 it raises ZeroDivisionError."""
     x, y, theta = (float(s) for s in state)
     V, w = float(u[0]), float(u[1])
-    return np.array([x + V / w * (math.sin(theta + w * dt) - math.sin(theta)), y, theta])
+    x_new = x + V / w * (math.sin(theta + w * dt) - math.sin(theta))
+    y_new = y + V / w * (math.cos(theta) - math.cos(theta + w * dt))
+    return np.array([x_new, y_new, _wrap(theta + w * dt)])
 
 
 def _unicycle_variant(mistake: str, hint: str, **knobs) -> Variant:
@@ -284,7 +303,8 @@ def unicycle(student_fn, seed: int = 0) -> CheckResult:
 
     The first case is chapter 8's example (θ = 0, V = 0.5 m/s, ω = 0, Δt = 1 s); one case
     drives with ω = 1e-15, where chapter 8 shows the arc formula 2 cm off: a test for
-    exactly ω == 0 does not protect it.  Introduced in chapter 8.
+    exactly ω == 0 does not protect it.  Slow turns at ω = ±0.001, ±0.01 and ±0.05, where the
+    arc formula is exact, catch a straight-line branch taken too far from 0.  Introduced in chapter 8.
 
     Parameters
     ----------
@@ -312,7 +332,9 @@ def unicycle(student_fn, seed: int = 0) -> CheckResult:
             dt=1.0,
         ),
     ]
-    while len(cases) < 17:
+    for w in (1e-3, -1e-3, 1e-2, -1e-2, 5e-2, -5e-2):  # slow turns: the arc formula still exact, the robot turning
+        cases.append(Case(f"ω = {w:g}: a slow turn", state=np.array([0.0, 0.0, 0.3]), u=np.array([2.0, w]), dt=1.0))
+    while len(cases) < 23:
         state = np.array([*rng.uniform(-5, 5, 2), rng.uniform(-np.pi, np.pi)])
         u, dt = np.array([rng.uniform(-1, 2), rng.uniform(-1.5, 1.5)]), float(rng.uniform(0.05, 1.0))
         if abs(abs(models.unicycle(state, u, dt)[2]) - np.pi) > 1e-3:  # stay clear of the ±π seam
@@ -328,10 +350,15 @@ def unicycle(student_fn, seed: int = 0) -> CheckResult:
         "line whenever |ω| is tiny, e.g. abs(omega) < 1e-9, not only when omega == 0."
     )
     SIN_COS = "x moves with cos θ and y with sin θ: heading θ = 0 drives along +x."
+    WIDE = (
+        "Only |ω| below about 1e-6 needs the straight line: at ω = 1e-3 the arc formula is still exact to about "
+        "1e-13 m, and the robot already turns (2 m along the arc, it ends 1 mm to the side of the straight line)."
+    )
     variants = [
-        _unicycle_variant("exact_zero_test", TINY),  # before divides_by_omega, which gives the same at ω = 1e-15
-        _unicycle_variant("exact_zero_test", TINY, sin=math.sin, cos=math.cos),
-        _unicycle_variant("divides_by_omega", LIMIT, limit=False),
+        _unicycle_variant("exact_zero_test", TINY, limit=0.0),
+        _unicycle_variant("exact_zero_test", TINY, limit=0.0, sin=math.sin, cos=math.cos),
+        *(_unicycle_variant("straight_too_wide", WIDE, limit=limit) for limit in (1e-2, 5e-2, 1e-1)),
+        _unicycle_variant("divides_by_omega", LIMIT, limit=None),
         Variant("divides_by_omega", _unicycle_in_floats, LIMIT),
         _unicycle_variant(
             "unwrapped_angle", "θ + ωΔt can leave (−π, π]; wrap it, e.g. with kf.wrap_angle.", wrap=False

@@ -197,6 +197,11 @@ def _variants() -> list[Variant]:
     ]
 
 
+def _offset_one_minus_u(w, rng):
+    """The package's systematic resampling with each prepared draw U replaced by 1 - U: positions (k - U)/N."""
+    return filters.resample_systematic(w, PreparedDraws([1.0 - u for u in rng.first], rng.seed))
+
+
 def _cases(rng) -> list[Case]:
     def case(label, w, U, repeat=False):
         w = np.asarray(w, dtype=float)
@@ -267,8 +272,9 @@ def resample_systematic(student_fn, seed: int = 0) -> CheckResult:
     package's the same prepared generator (:class:`PreparedDraws`), whose first uniform draw is
     the case's U however it is asked for.
     The indices are compared in ascending order (the new cloud does not depend on their order)
-    and must be integers.  Stratified resampling (a new U_i for each position) is recognised and
-    not called wrong: it is a right answer to another question.  Introduced in chapter 11.
+    and must be integers.  Positions (k - U)/N, k = 1 .. N (the offset drawn as 1 - U) pass.
+    Stratified resampling (a new U_i for each position) is recognised and named: a right scheme,
+    but not the one asked for.  Introduced in chapter 11.
 
     Parameters
     ----------
@@ -306,16 +312,24 @@ def resample_systematic(student_fn, seed: int = 0) -> CheckResult:
                 "answer each time it is called with the same rng."
             )
             return _verdict(headline, case, once[1], "ignores_rng", _OWN_RNG)
+    mirrored = run_check("resample_systematic", student_fn, _offset_one_minus_u, cases, [], returns, "", pair=_sorted)
+    if mirrored.passed:  # (k - U)/N, k = 1 .. N: the offset drawn as 1 - U, as right as U
+        headline = (
+            f"✔ {who} matches kf.resample_systematic on all {len(cases)} cases with the offset drawn as 1 − U: "
+            "positions (k − U)/N, k = 1 … N, evenly spaced with one offset for all, a right form of (6)."
+        )
+        return CheckResult(True, None, headline, headline)
     stratified = run_check("resample_stratified", student_fn, filters.resample_stratified, cases, [], returns, "")
     if stratified.passed:
         headline = (
-            f"✔ {who} is stratified resampling, a right answer to another question: it matches "
-            f"kf.resample_stratified on all {len(cases)} cases."
+            f"✘ {who} is not right yet: it is stratified resampling, a right scheme but not the one asked for "
+            f"(it matches kf.resample_stratified on all {len(cases)} cases)."
         )
         hint = (
-            "It draws a new U_i for each position, p_i = (i + U_i)/N. Systematic resampling draws one U for all, "
-            "p_i = (i + U)/N: one random number, and each particle's count is ⌊N·w_i⌋ or ⌈N·w_i⌉ "
-            f"(a stratified count differs from N·w_i by less than 2). See {WHERE}."
+            f"Likely mistake: {MISTAKES['stratified_not_systematic']}. It draws a new U_i for each position, "
+            "p_i = (i + U_i)/N. Systematic resampling draws one U for all, p_i = (i + U)/N: one random number, and "
+            "each particle's count is ⌊N·w_i⌋ or ⌈N·w_i⌉ (a stratified count differs from N·w_i by less than 2). "
+            f"See {WHERE}."
         )
-        return CheckResult(True, None, f"{headline}\n{hint}", headline, "", hint)
+        return CheckResult(False, "stratified_not_systematic", f"{headline}\n{hint}", headline, "", hint)
     return result

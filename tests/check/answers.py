@@ -45,6 +45,13 @@ def hand_unicycle(state, u, dt):
     return np.array([x, y, math.atan2(math.sin(theta + w * dt), math.cos(theta + w * dt))])
 
 
+def kf_step_forgets_F_in_mean(mu, Sig, u, z, F, B, H, R, Q):
+    mu_bar = mu + B @ u  # wrong: F mu, not mu
+    Sig_bar = F @ Sig @ F.T + R
+    K = Sig_bar @ H.T @ np.linalg.inv(H @ Sig_bar @ H.T + Q)
+    return mu_bar + K @ (z - H @ mu_bar), (np.eye(len(mu)) - K @ H) @ Sig_bar
+
+
 def hand_sigma_points(mu, Sig, lam):
     n = len(mu)
     L = np.linalg.cholesky((n + lam) * Sig)
@@ -213,6 +220,12 @@ def kf_1d_innovation_from_mu(mu, var, u, z, a=1.0, b=1.0, c=1.0, R=0.2, Q=0.1):
     mu_bar, var_bar = a * mu + b * u, a**2 * var + R
     K = c * var_bar / (c**2 * var_bar + Q)
     return mu_bar + K * (z - c * mu), (1 - K * c) * var_bar  # wrong: mu, not mu_bar
+
+
+def kf_1d_forgets_c_in_innovation(mu, var, u, z, a=1.0, b=1.0, c=1.0, R=0.2, Q=0.1):
+    mu_bar, var_bar = a * mu + b * u, a**2 * var + R
+    K = c * var_bar / (c**2 * var_bar + Q)
+    return mu_bar + K * (z - mu_bar), (1 - K * c) * var_bar  # wrong: z - mu_bar, not z - c mu_bar
 
 
 def kf_1d_update_from_var(mu, var, u, z, a=1.0, b=1.0, c=1.0, R=0.2, Q=0.1):
@@ -400,6 +413,11 @@ def range_bearing_robot_minus_landmark(state, landmark):
     return np.array([np.hypot(dx, dy), kf.wrap_angle(np.arctan2(dy, dx) - state[2])])
 
 
+def range_bearing_shifted_wrap(state, landmark):
+    dx, dy = landmark[0] - state[0], landmark[1] - state[1]
+    return np.array([np.hypot(dx, dy), (np.arctan2(dy, dx) - state[2]) % (2 * np.pi) - np.pi])  # wrong: turned by pi
+
+
 def range_bearing_plus_theta(state, landmark):
     dx, dy = landmark[0] - state[0], landmark[1] - state[1]
     return np.array([np.hypot(dx, dy), kf.wrap_angle(np.arctan2(dy, dx) + state[2])])  # wrong: + theta
@@ -517,6 +535,22 @@ def unicycle_no_limit_floats(state, u, dt):
     return np.array([x, y, kf.wrap_angle(theta + w * dt)])
 
 
+def unicycle_straight_below_1e_6(state, u, dt):
+    x, y, theta = state
+    V, w = u
+    if abs(w) < 1e-6:  # right: below about 1e-6 the arc formula loses digits, above it is exact
+        return np.array([x + V * dt * math.cos(theta), y + V * dt * math.sin(theta), kf.wrap_angle(theta + w * dt)])
+    return hand_unicycle(state, u, dt)
+
+
+def unicycle_straight_too_wide(state, u, dt):
+    x, y, theta = state
+    V, w = u
+    if abs(w) < 0.02:  # wrong: a slow turn is driven as a straight line
+        return np.array([x + V * dt * math.cos(theta), y + V * dt * math.sin(theta), kf.wrap_angle(theta + w * dt)])
+    return hand_unicycle(state, u, dt)
+
+
 def unicycle_unwrapped(state, u, dt):
     x, y, _ = hand_unicycle(state, u, dt)
     return np.array([x, y, state[2] + u[1] * dt])  # wrong: heading not wrapped
@@ -525,7 +559,7 @@ def unicycle_unwrapped(state, u, dt):
 def unicycle_y_backwards(state, u, dt):
     x, y, theta = state
     V, w = u
-    if w == 0:
+    if abs(w) < 1e-9:
         return hand_unicycle(state, u, dt)
     x = x + V / w * (np.sin(theta + w * dt) - np.sin(theta))
     y = y + V / w * (np.cos(theta + w * dt) - np.cos(theta))  # wrong: the cosines the other way round

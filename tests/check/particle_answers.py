@@ -217,11 +217,19 @@ def left_side(w, rng):
     return np.searchsorted(c, positions)  # wrong: side="left"
 
 
+def systematic_k_minus_u(w, rng):
+    N = len(w)
+    positions = (np.arange(1, N + 1) - rng.random()) / N  # (k - U)/N, k = 1 .. N: the offset 1 - U
+    c = np.cumsum(w)
+    c /= c[-1]
+    return np.searchsorted(c, np.minimum(positions, np.nextafter(1.0, 0.0)), side="right")
+
+
 def left_side_walk(w, rng):
     N = len(w)
     positions = (rng.random() + np.arange(N)) / N
     c = np.cumsum(w)
-    c[-1] = 1.0
+    c /= c[-1]
     indexes = np.zeros(N, dtype=int)
     j = 0
     for i in range(N):

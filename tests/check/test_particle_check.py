@@ -63,6 +63,7 @@ NEW_KEYS = {
     "weights_returned_too",
     "float_indices",
     "ignores_rng",
+    "stratified_not_systematic",
 }
 
 
@@ -143,7 +144,7 @@ def test_a_known_mistake_is_named(fn, mistake):
 
 def test_every_new_catalogue_key_is_in_the_catalogue_and_exercised():
     assert NEW_KEYS <= set(kf.check.MISTAKES)
-    assert NEW_KEYS - {"ignores_rng"} == {mistake for _, mistake in WRONG}
+    assert NEW_KEYS - {"ignores_rng", "stratified_not_systematic"} == {mistake for _, mistake in WRONG}
     assert {v.mistake for v in particle._variants()} <= NEW_KEYS
 
 
@@ -153,14 +154,20 @@ def test_a_function_that_ignores_the_rng_is_told_to_use_it():
     assert "np.random" in result.hint
 
 
-# ------------------------------------------------------------ stratified: a right answer to another question
+# ------------------------------------------------------------ stratified: right, but not what is asked
 @pytest.mark.parametrize("fn", [kf.resample_stratified, a.resample_stratified], ids=["package", "student"])
-def test_stratified_resampling_is_recognised_and_not_called_wrong(fn):
+def test_stratified_resampling_is_named_and_does_not_pass(fn):
     result = kf.check.resample_systematic(fn)
+    assert not result.passed and result.mistake == "stratified_not_systematic", result.message
+    assert result.headline.startswith("✘") and "stratified resampling" in result.headline
+    assert "one offset for all" in result.hint and "one U for all" in result.hint
+
+
+def test_positions_k_minus_u_over_n_are_systematic_resampling_and_pass():
+    """(k − U)/N for k = 1 … N is (i + U')/N with U' = 1 − U: one offset for all, as right as (i + U)/N."""
+    result = kf.check.resample_systematic(a.systematic_k_minus_u)
     assert result.passed and result.mistake is None, result.message
-    assert result.headline.startswith("✔") and "stratified resampling" in result.headline
-    assert "another question" in result.headline and "one U for all" in result.hint
-    assert "wrong" not in result.message
+    assert "1 − U" in result.headline
 
 
 # ------------------------------------------------------------ functions that misbehave
