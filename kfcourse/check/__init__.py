@@ -5,7 +5,8 @@ edge cases such as ω = 0, bearings near ±π or n = 1, and seeded random ones) 
 compares every answer with the package's own function.  The verdict, shown as
 the last line of a cell, is ✔ with what was checked, or ✘ with the first case
 that differs (inputs, expected, got) and, when a known wrong version gives the
-same answer, the likely mistake and where the chapter has the right equation.
+same answer on every case, the likely mistake and where the chapter has the right
+equation (chapters 3 and 5 otherwise say which step and which input are at fault).
 
 Every checker returns a :class:`CheckResult` with ``passed`` (bool), ``mistake``
 (a key of :data:`MISTAKES`, or None) and ``message`` (str).  A function that

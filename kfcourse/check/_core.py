@@ -4,9 +4,13 @@ A checker is a list of :class:`Case` (inputs, each with a label saying what it
 tests), the package's own function (the reference) and a list of :class:`Variant`
 (known wrong versions, each with the mistake it makes and a hint).  :func:`run_check`
 runs the student's function on every case and stops at the first one whose answer
-differs from the reference.  It then runs each wrong variant on that same case:
-a variant that gives the student's (wrong) answer names the likely mistake.  No
-guessing: a mistake is named only when a known wrong version reproduces it.
+differs from the reference.  It then runs each wrong variant on every case: a variant
+that gives the student's answer on all of them names the likely mistake, unless
+another mistake does too (then both are said and neither is named).  No guessing:
+a mistake is named only when a known wrong version reproduces it everywhere.
+Without a name, a checker that declares its steps (:class:`Step`) and inputs
+(:class:`Probe`) says which step is wrong on its own and which input an output
+ignores or follows where the right one does not.
 """
 
 from __future__ import annotations
@@ -110,6 +114,8 @@ MISTAKES = {
     "multinomial": "N independent positions are drawn (multinomial resampling), not N evenly spaced ones",
     "unnormalised_weights": "the weights are taken as normalised: the cumulative sum ends at their sum, not at 1",
     "cumsum_not_one": "the cumulative sum does not end at exactly 1, so an index runs past the end",
+    "shortfall_to_last": "the cumulative sum is not divided by its last entry, so what the weights lack of 1 goes "
+    "to the last particle, even one of weight 0",
     "boundary_side": "a position exactly on a slice boundary c_i goes to particle i instead of i + 1",
     "weights_not_indices": "weights are returned where the indices of the particles drawn belong",
     "counts_not_indices": "how often each particle is drawn is returned where the indices belong",
@@ -141,6 +147,28 @@ class Variant:
     mistake: str  #: a key of MISTAKES
     fn: Callable  #: same signature as the reference, with that one mistake
     hint: str  #: where the right version is, in the chapter
+
+
+@dataclass(frozen=True)
+class Step:
+    """One step of a chapter's equations, isolated: inputs under which the right answer is that step's alone.
+
+    With c = 0 the update of chapter 3 hands the prediction back unchanged, so only (1)-(2) count; with
+    a = 1, b = 0 and R = 0 the prediction is the prior, so only the update (3)-(5) counts.
+    """
+
+    inputs: str  #: the isolating inputs, as the verdict says them: "c = 0"
+    equations: str  #: what alone counts there: "the prediction (1)-(2)"
+    isolate: Callable  #: the inputs of a case (a dict) -> the same with the isolating values put in
+
+
+@dataclass(frozen=True)
+class Probe:
+    """One input moved alone, to see which outputs follow it: the right ones do as the equations say."""
+
+    name: str  #: the input, as the function names it
+    move: Callable  #: its value -> another value
+    enters: str  #: where it enters, by the chapter's numbers: "(2), σ̄² = a²σ² + R"
 
 
 @dataclass(frozen=True, repr=False)
@@ -371,6 +399,83 @@ def _likely_mistakes(student_fn, variants, cases, expected, number, returns, pai
     return list(found.values())
 
 
+def _answers(fn, inputs: dict, expected, pair):
+    """``fn`` on a fresh copy of ``inputs``, put into the reference's order: the outcome of :func:`_quietly`."""
+    return _paired(_quietly(fn, Case("", **inputs)), expected, pair)
+
+
+def _diagnosis(student_fn, reference, cases, number, steps, probes, returns, pair) -> list[str]:
+    """What the student's function does step by step and input by input: sentences that hold of it.
+
+    Each step is run alone on every case (:class:`Step`), so the verdict can say which of the chapter's
+    equations are right on their own.  Then each input of case ``number``, the first that fails, is
+    moved alone (:class:`Probe`), and an output that follows an input the right one ignores, or ignores
+    one the right one follows, is named with the equation where that input enters.  No sentence
+    guesses at a mistake: each says what the function did.
+    """
+    said, right = [], []
+    for step in steps:
+        agree = [_agree_on(student_fn, reference, step.isolate(dict(case.inputs)), returns, pair) for case in cases]
+        if None in agree:  # the isolating inputs are outside what the right function takes: nothing to say
+            continue
+        right.append(all(agree))
+        said.append(
+            f"with {step.inputs} only {step.equations} counts, and yours is {'right' if right[-1] else 'wrong'} there"
+        )
+    if len(right) > 1 and all(right):
+        said.append("so what is wrong shows only where both act at once")
+    if probes and _quietly(student_fn, cases[number])[0] == "returned":
+        said += _probe_sentences(student_fn, reference, cases[number], probes, returns, pair)
+    return said
+
+
+def _agree_on(student_fn, reference, inputs: dict, returns, pair) -> bool | None:
+    """Whether the student's function gives the reference's answer on these inputs (None: the reference refuses
+    them)."""
+    expected = _quietly(reference, Case("", **inputs))
+    if expected[0] == "raised":
+        return None
+    return _same_outcome(_answers(student_fn, inputs, expected[1], pair), expected, returns)
+
+
+def _probe_sentences(student_fn, reference, case, probes, returns, pair) -> list[str]:
+    """For each input moved alone on ``case``: the outputs whose following of it differs from the right ones'."""
+    right0 = case.call(reference)
+    mine0 = _answers(student_fn, dict(case.inputs), right0, pair)
+    out = []
+    for probe in probes:
+        moved = {**case.inputs, probe.name: probe.move(copy.deepcopy(case.inputs[probe.name]))}
+        right1 = _quietly(reference, Case("", **moved))
+        mine1 = _answers(student_fn, moved, right1[1], pair)
+        if right1[0] == "raised" or mine1[0] == "raised":
+            continue
+        parts = [_parts(x, returns) for x in (right0, right1[1], mine0[1], mine1[1])]
+        if any(p is None for p in parts):
+            continue
+        for name, r0, r1, m0, m1 in zip(returns, *parts, strict=True):
+            follows = not _close(r0, r1)
+            yours = not _close(m0, m1)
+            if follows and not yours:
+                out.append(
+                    f"your {name} does not change when {probe.name} changes, and the right one does: "
+                    f"{probe.name} enters {probe.enters}"
+                )
+            elif yours and not follows:
+                out.append(f"your {name} changes when {probe.name} changes, and the right one does not")
+    return out
+
+
+def _close(a, b) -> bool:
+    """Whether two parts of an answer are equal within the checkers' tolerance."""
+    a, b = _as_array(a), _as_array(b)
+    return (
+        a is not None
+        and b is not None
+        and a.shape == b.shape
+        and bool(np.allclose(a, b, rtol=RTOL, atol=ATOL, equal_nan=True))
+    )
+
+
 def _gap(expected, got, returns: tuple[str, ...]) -> float:
     """The largest absolute difference between two answers that :func:`problem` finds equal."""
     pairs = zip(_parts(expected, returns), _parts(got, returns), strict=True)
@@ -393,6 +498,8 @@ def run_check(
     *,
     pair: Callable | None = None,
     approximation: tuple[float, str, str] | None = None,
+    steps: tuple[Step, ...] = (),
+    probes: tuple[Probe, ...] = (),
 ) -> CheckResult:
     """Run ``student_fn`` on every case and compare with ``reference``; name the likely mistake.
 
@@ -421,6 +528,10 @@ def run_check(
         tolerance but differs from the reference by more than ``exact_to`` somewhere is
         an approximation (a numerically differentiated Jacobian), not the formula asked
         for; it fails with the key ``mistake`` of :data:`MISTAKES` and ``hint``.
+    steps, probes : tuple of Step, tuple of Probe
+        The chapter's steps, each with the inputs that isolate it, and the inputs to move one at a time:
+        when no known mistake gives the student's answer, the verdict says which steps are right on their
+        own and which outputs follow the wrong inputs (:func:`_diagnosis`).
 
     Returns
     -------
@@ -454,7 +565,9 @@ def run_check(
             details += _where(outcome[1], student_fn)
         else:
             details += "\ngot:\n" + _block(_named(outcome[1], returns))
-        mistake, hint = None, f"No known mistake gives this answer. Compare your code with {where}."
+        mistake, hint = None, "No known mistake gives this answer. "
+        found_where = _diagnosis(student_fn, reference, cases, number, steps, probes, returns, pair)
+        hint += "".join(f"{_sentence(sentence)}. " for sentence in found_where) + f"Compare your code with {where}."
         found = _likely_mistakes(student_fn, variants, cases, expected, number, returns, pair)
         if len(found) == 1:
             mistake = found[0].mistake

@@ -8,7 +8,7 @@ from __future__ import annotations
 import numpy as np
 
 from .. import filters
-from ._core import Case, CheckResult, Variant, random_covariance, run_check
+from ._core import Case, CheckResult, Probe, Step, Variant, random_covariance, run_check
 
 
 # --------------------------------------------------------------------- kf_1d_step
@@ -40,6 +40,24 @@ def _kf_1d_with(
     K = c_in_gain * seen[gain_from] / (c_in_gain**2 * seen[gain_from] + Q)  # (3)
     mu_new = mu_bar + K * innovation_sign * (z - c * seen[innovation_from])  # (4)
     return mu_new, (1 - K * (c if update_c else 1.0)) * seen[update_from]  # (5)
+
+
+# Chapter 3's step, one equation group at a time, and its inputs one at a time (run_check's diagnosis).
+KF_1D_STEPS = (
+    Step("c = 0", "the prediction (1)-(2)", lambda i: {**i, "c": 0.0}),
+    Step("a = 1, b = 0 and R = 0", "the update (3)-(5)", lambda i: {**i, "a": 1.0, "b": 0.0, "R": 0.0}),
+)
+KF_1D_PROBES = (
+    Probe("mu", lambda x: x + 1.0, "(1), μ̄ = aμ + bu"),
+    Probe("var", lambda x: x + 0.5, "(2), σ̄² = a²σ² + R"),
+    Probe("u", lambda x: x + 1.0, "(1), μ̄ = aμ + bu"),
+    Probe("z", lambda x: x + 1.0, "(4), μ = μ̄ + K(z − cμ̄)"),
+    Probe("a", lambda x: x + 0.3, "(1) and (2)"),
+    Probe("b", lambda x: x + 0.5, "(1), μ̄ = aμ + bu"),
+    Probe("c", lambda x: x + 0.3, "(3), (4) and (5)"),
+    Probe("R", lambda x: x + 0.3, "(2), σ̄² = a²σ² + R"),
+    Probe("Q", lambda x: x + 0.3, "(3), K = cσ̄² / (c²σ̄² + Q)"),
+)
 
 
 def kf_1d_step(student_fn, seed: int = 0) -> CheckResult:
@@ -147,7 +165,17 @@ def kf_1d_step(student_fn, seed: int = 0) -> CheckResult:
             "K = σ̄² / (σ̄² + Q) and (1 − K) are the c = 1 forms of (3) and (5): keep c in both.",
         ),
     ]
-    return run_check("kf_1d_step", student_fn, filters.kf_1d_step, cases, variants, ("mu", "var"), ch3)
+    return run_check(
+        "kf_1d_step",
+        student_fn,
+        filters.kf_1d_step,
+        cases,
+        variants,
+        ("mu", "var"),
+        ch3,
+        steps=KF_1D_STEPS,
+        probes=KF_1D_PROBES,
+    )
 
 
 # ---------------------------------------------------------------------------- fuse
@@ -255,6 +283,28 @@ def _kf_variant(mistake: str, knob: str, hint: str, value=True) -> Variant:
     return Variant(mistake, lambda *args: _kf_step_with(*args, **{knob: value}), hint)
 
 
+# Chapter 5's step, one equation group at a time, and its inputs one at a time (run_check's diagnosis).
+KF_STEPS = (
+    Step("H = 0", "the prediction (1)-(2)", lambda i: {**i, "H": np.zeros_like(i["H"])}),
+    Step(
+        "F = I, B = 0 and R = 0",
+        "the update (3)-(5)",
+        lambda i: {**i, "F": np.eye(len(i["mu"])), "B": np.zeros_like(i["B"]), "R": np.zeros_like(i["R"])},
+    ),
+)
+KF_PROBES = (
+    Probe("mu", lambda x: x + 1.0, "(1), μ̄ = Fμ + Bu"),
+    Probe("Sig", lambda x: x + 0.5 * np.eye(len(x)), "(2), Σ̄ = FΣFᵀ + R"),
+    Probe("u", lambda x: x + 1.0, "(1), μ̄ = Fμ + Bu"),
+    Probe("z", lambda x: x + 1.0, "(4), μ = μ̄ + K(z − Hμ̄)"),
+    Probe("F", lambda x: x + 0.3, "(1) and (2)"),
+    Probe("B", lambda x: x + 0.5, "(1), μ̄ = Fμ + Bu"),
+    Probe("H", lambda x: x + 0.3, "(3), (4) and (5)"),
+    Probe("R", lambda x: x + 0.5 * np.eye(len(x)), "(2), Σ̄ = FΣFᵀ + R"),
+    Probe("Q", lambda x: x + 0.5 * np.eye(len(x)), "(3), S = HΣ̄Hᵀ + Q"),
+)
+
+
 def kf_step(student_fn, seed: int = 0) -> CheckResult:
     """Check your ``kf_step(mu, Sig, u, z, F, B, H, R, Q)`` against :func:`kfcourse.kf_step`.
 
@@ -331,4 +381,6 @@ def kf_step(student_fn, seed: int = 0) -> CheckResult:
         _kf_variant("wrong_order", "right_side", "equation (5) is Σ = (I − K H) Σ̄, with (I − K H) on the left."),
         _kf_variant("wrong_order", "row_vector", "equation (1) is μ̄ = F μ + B u, with F on the left of μ."),
     ]
-    return run_check("kf_step", student_fn, filters.kf_step, cases, variants, ("mu", "Sig"), ch5)
+    return run_check(
+        "kf_step", student_fn, filters.kf_step, cases, variants, ("mu", "Sig"), ch5, steps=KF_STEPS, probes=KF_PROBES
+    )

@@ -26,8 +26,9 @@ def _pose_and_landmark(rng) -> tuple[np.ndarray, np.ndarray]:
 
 
 def _sensor_cases(rng) -> list[Case]:
-    """The worked example, a landmark straight ahead (bearing exactly 0: a bearing turned by π lands on the seam ±π,
-    where the two ways of turning it differ), landmarks straight behind the robot (bearing near ±π), random ones."""
+    """The worked example, a landmark straight ahead (bearing exactly 0: a bearing turned by π lands on the seam,
+    π when wrapped into (−π, π] and −π by (φ mod 2π) − π), landmarks straight behind the robot (bearing near ±π),
+    random ones."""
     cases = [Case("chapter 7's worked example", state=ROBOT, landmark=LANDMARK)]
     cases.append(Case("a landmark straight ahead", state=np.array([1.0, 2.0, 0.0]), landmark=np.array([4.0, 2.0])))
     for theta, landmark_angle in [(0.0, np.pi - 0.05), (0.0, -np.pi + 0.05), (3.0, -2.9), (-3.0, 2.9)]:
@@ -303,8 +304,8 @@ def unicycle(student_fn, seed: int = 0) -> CheckResult:
 
     The first case is chapter 8's example (θ = 0, V = 0.5 m/s, ω = 0, Δt = 1 s); one case
     drives with ω = 1e-15, where chapter 8 shows the arc formula 2 cm off: a test for
-    exactly ω == 0 does not protect it.  Slow turns at ω = ±0.001, ±0.01 and ±0.05, where the
-    arc formula is exact, catch a straight-line branch taken too far from 0.  Introduced in chapter 8.
+    exactly ω == 0 does not protect it.  Slow turns at ω = ±1e-5, ±0.001, ±0.01 and ±0.05, where
+    the arc formula is exact, catch a straight-line branch taken too far from 0.  Introduced in chapter 8.
 
     Parameters
     ----------
@@ -332,9 +333,18 @@ def unicycle(student_fn, seed: int = 0) -> CheckResult:
             dt=1.0,
         ),
     ]
-    for w in (1e-3, -1e-3, 1e-2, -1e-2, 5e-2, -5e-2):  # slow turns: the arc formula still exact, the robot turning
+    for w in (
+        1e-5,
+        -1e-5,
+        1e-3,
+        -1e-3,
+        1e-2,
+        -1e-2,
+        5e-2,
+        -5e-2,
+    ):  # slow turns: the arc formula exact, the robot turning
         cases.append(Case(f"ω = {w:g}: a slow turn", state=np.array([0.0, 0.0, 0.3]), u=np.array([2.0, w]), dt=1.0))
-    while len(cases) < 23:
+    while len(cases) < 25:
         state = np.array([*rng.uniform(-5, 5, 2), rng.uniform(-np.pi, np.pi)])
         u, dt = np.array([rng.uniform(-1, 2), rng.uniform(-1.5, 1.5)]), float(rng.uniform(0.05, 1.0))
         if abs(abs(models.unicycle(state, u, dt)[2]) - np.pi) > 1e-3:  # stay clear of the ±π seam
@@ -357,7 +367,7 @@ def unicycle(student_fn, seed: int = 0) -> CheckResult:
     variants = [
         _unicycle_variant("exact_zero_test", TINY, limit=0.0),
         _unicycle_variant("exact_zero_test", TINY, limit=0.0, sin=math.sin, cos=math.cos),
-        *(_unicycle_variant("straight_too_wide", WIDE, limit=limit) for limit in (1e-2, 5e-2, 1e-1)),
+        *(_unicycle_variant("straight_too_wide", WIDE, limit=limit) for limit in (1e-4, 1e-3, 1e-2, 5e-2, 1e-1)),
         _unicycle_variant("divides_by_omega", LIMIT, limit=None),
         Variant("divides_by_omega", _unicycle_in_floats, LIMIT),
         _unicycle_variant(

@@ -127,7 +127,7 @@ def _variants() -> list[Variant]:
         Variant("unnormalised_weights", with_(normalise=False, last_one=False), unnormalised),
         Variant("unnormalised_weights", with_(normalise=False, last_one=False, loop=True), unnormalised),
         Variant(
-            "unnormalised_weights",
+            "shortfall_to_last",
             with_(normalise=False, last_one=False, clip=True),  # as a guard j < N - 1 in the walk, or c[-1] = 1, does
             "Indices clipped at N − 1 instead of making the cumulative sum end at 1: a particle of weight 0 can be "
             "drawn. np.minimum(idx, N − 1), a guard j < N − 1 in the walk, or c[-1] = 1 on weights that sum to 1 only "
@@ -197,9 +197,30 @@ def _variants() -> list[Variant]:
     ]
 
 
+def _k_minus_u(w, rng):
+    """Positions (k - U)/N, k = 1 .. N, each in the slice (c_(i-1), c_i]: systematic resampling from the other end,
+    whose last position is exactly 1 when U = 0."""
+    c = np.cumsum(w)
+    c /= c[-1]
+    return np.searchsorted(c, (np.arange(1, len(w) + 1) - rng.random()) / len(w), side="left")
+
+
 def _offset_one_minus_u(w, rng):
-    """The package's systematic resampling with each prepared draw U replaced by 1 - U: positions (k - U)/N."""
+    """The package's systematic resampling with each prepared draw U replaced by 1 - U: positions (k - U)/N with
+    the slices [c_(i-1), c_i), the last position kept below 1."""
     return filters.resample_systematic(w, PreparedDraws([1.0 - u for u in rng.first], rng.seed))
+
+
+def _integers(result: CheckResult, student_fn, cases, who: str) -> CheckResult:
+    """``result``, a pass, unless the indices come back as floats: ``particles[idx]`` needs integers."""
+    got = _quietly(student_fn, cases[0])[1]
+    if np.asarray(got).dtype.kind in "iu":
+        return result
+    headline = (
+        f"✘ {who} is not right yet: on case 1 of {len(cases)} ({cases[0].label}), the indices are right "
+        f"but they are {np.asarray(got).dtype} numbers, not integers."
+    )
+    return _verdict(headline, cases[0], got, "float_indices", _FLOATS)
 
 
 def _cases(rng) -> list[Case]:
@@ -294,14 +315,7 @@ def resample_systematic(student_fn, seed: int = 0) -> CheckResult:
     )
     who = getattr(student_fn, "__name__", "your function")
     if result.passed:
-        got = _quietly(student_fn, cases[0])[1]
-        if np.asarray(got).dtype.kind in "iu":
-            return result
-        headline = (
-            f"✘ {who} is not right yet: on case 1 of {len(cases)} ({cases[0].label}), the indices are right "
-            f"but they are {np.asarray(got).dtype} numbers, not integers."
-        )
-        return _verdict(headline, cases[0], got, "float_indices", _FLOATS)
+        return _integers(result, student_fn, cases, who)
     if not result.details:  # not written yet
         return result
     for number, case in enumerate(cases):  # the same rng twice: the same particles?
@@ -312,13 +326,13 @@ def resample_systematic(student_fn, seed: int = 0) -> CheckResult:
                 "answer each time it is called with the same rng."
             )
             return _verdict(headline, case, once[1], "ignores_rng", _OWN_RNG)
-    mirrored = run_check("resample_systematic", student_fn, _offset_one_minus_u, cases, [], returns, "", pair=_sorted)
-    if mirrored.passed:  # (k - U)/N, k = 1 .. N: the offset drawn as 1 - U, as right as U
-        headline = (
-            f"✔ {who} matches kf.resample_systematic on all {len(cases)} cases with the offset drawn as 1 − U: "
-            "positions (k − U)/N, k = 1 … N, evenly spaced with one offset for all, a right form of (6)."
-        )
-        return CheckResult(True, None, headline, headline)
+    for mirror in (_k_minus_u, _offset_one_minus_u):  # (k - U)/N, k = 1 .. N: systematic seen from the other end
+        if run_check("resample_systematic", student_fn, mirror, cases, [], returns, "", pair=_sorted).passed:
+            headline = (
+                f"✔ {who} matches systematic resampling on all {len(cases)} cases with the positions (k − U)/N, "
+                "k = 1 … N: evenly spaced with one offset for all, 1 − U instead of U, a right form of (6)."
+            )
+            return _integers(CheckResult(True, None, headline, headline), student_fn, cases, who)
     stratified = run_check("resample_stratified", student_fn, filters.resample_stratified, cases, [], returns, "")
     if stratified.passed:
         headline = (

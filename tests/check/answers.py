@@ -228,6 +228,24 @@ def kf_1d_forgets_c_in_innovation(mu, var, u, z, a=1.0, b=1.0, c=1.0, R=0.2, Q=0
     return mu_bar + K * (z - mu_bar), (1 - K * c) * var_bar  # wrong: z - mu_bar, not z - c mu_bar
 
 
+def kf_1d_R_scaled_by_a(mu, var, u, z, a=1.0, b=1.0, c=1.0, R=0.2, Q=0.1):
+    mu_bar, var_bar = a * mu + b * u, a**2 * var + a * R  # wrong: R scaled by a
+    K = c * var_bar / (c**2 * var_bar + Q)
+    return mu_bar + K * (z - c * mu_bar), (1 - K * c) * var_bar
+
+
+def kf_1d_var_with_fixed_Q(mu, var, u, z, a=1.0, b=1.0, c=1.0, R=0.2, Q=0.1):
+    mu_bar, var_bar = a * mu + b * u, a**2 * var + R
+    K = c * var_bar / (c**2 * var_bar + Q)
+    return mu_bar + K * (z - c * mu_bar), (1 - c * c * var_bar / (c * c * var_bar + 0.1)) * var_bar  # wrong: Q = 0.1
+
+
+def kf_1d_R_in_gain_too(mu, var, u, z, a=1.0, b=1.0, c=1.0, R=0.2, Q=0.1):
+    mu_bar, var_bar = a * mu + b * u, a**2 * var + R
+    K = c * var_bar / (c**2 * var_bar + Q + R)  # wrong: R in the gain too
+    return mu_bar + K * (z - c * mu_bar), (1 - K * c) * var_bar
+
+
 def kf_1d_update_from_var(mu, var, u, z, a=1.0, b=1.0, c=1.0, R=0.2, Q=0.1):
     mu_bar, var_bar = a * mu + b * u, a**2 * var + R
     K = c * var_bar / (c**2 * var_bar + Q)

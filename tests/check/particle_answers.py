@@ -225,6 +225,23 @@ def systematic_k_minus_u(w, rng):
     return np.searchsorted(c, np.minimum(positions, np.nextafter(1.0, 0.0)), side="right")
 
 
+def systematic_k_minus_u_walk(w, rng):
+    N = len(w)
+    positions = (np.arange(1, N + 1) - rng.random()) / N  # (k - U)/N: at U = 0 the last one is exactly 1
+    c = np.cumsum(w)
+    c /= c[-1]
+    indexes, j = np.zeros(N, dtype=int), 0
+    for i in range(N):
+        while c[j] < positions[i]:  # the slices (c_(j-1), c_j]: a position of 1 lands in the last slice
+            j += 1
+        indexes[i] = j
+    return indexes
+
+
+def systematic_k_minus_u_floats(w, rng):
+    return systematic_k_minus_u(w, rng).astype(float)  # wrong: float indices
+
+
 def left_side_walk(w, rng):
     N = len(w)
     positions = (rng.random() + np.arange(N)) / N

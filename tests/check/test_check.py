@@ -273,6 +273,41 @@ def test_a_mistake_that_matches_on_one_case_only_is_not_named(name, fn, not_this
     assert "No known mistake gives this answer" in result.hint
 
 
+# ------------------------------------------- with no name: which step, and which input, is at fault
+@pytest.mark.parametrize(
+    ("name", "fn", "prediction", "update"),
+    [
+        ("kf_1d_step", answers.kf_1d_forgets_c_in_innovation, "right", "wrong"),
+        ("kf_1d_step", answers.kf_1d_R_scaled_by_a, "wrong", "right"),
+        ("kf_step", answers.kf_step_forgets_F_in_mean, "wrong", "right"),
+    ],
+)
+def test_each_step_is_run_on_its_own_and_the_verdict_says_which_is_wrong(name, fn, prediction, update):
+    result = getattr(kf.check, name)(fn)
+    assert not result.passed and result.mistake is None, result.message
+    assert f"only the prediction (1)-(2) counts, and yours is {prediction} there" in result.hint
+    assert f"only the update (3)-(5) counts, and yours is {update} there" in result.hint
+
+
+def test_a_mistake_that_shows_only_where_both_steps_act_is_said_so():
+    hint = kf.check.kf_1d_step(answers.kf_1d_R_in_gain_too).hint
+    assert hint.count("and yours is right there") == 2 and "shows only where both act at once" in hint
+
+
+def test_an_output_that_ignores_an_input_it_needs_is_named_with_its_equation():
+    hint = kf.check.kf_1d_step(answers.kf_1d_var_with_fixed_Q).hint
+    assert "Your var does not change when Q changes, and the right one does: Q enters (3)" in hint
+    assert "Your mu does not change" not in hint  # its mean takes Q as it should
+
+
+def test_an_output_that_follows_an_input_it_should_not_is_named():
+    def var_follows_z(mu, var, u, z, a=1.0, b=1.0, c=1.0, R=0.2, Q=0.1):
+        right_mu, right_var = kf.kf_1d_step(mu, var, u, z, a, b, c, R, Q)
+        return right_mu, right_var + 1e-3 * abs(z)  # wrong: the variance moves with the reading
+
+    assert "Your var changes when z changes, and the right one does not" in kf.check.kf_1d_step(var_follows_z).hint
+
+
 def test_two_mistakes_no_case_tells_apart_are_both_said_and_neither_named():
     """(φ mod 2π) − π turns φ by π, as robot-minus-landmark offsets wrapped into [−π, π) do, on every input."""
     result = kf.check.range_bearing(answers.range_bearing_shifted_wrap)

@@ -33,9 +33,9 @@ WRONG = [
     (kf.resample_multinomial, "multinomial"),
     (a.unnormalised_search, "unnormalised_weights"),
     (a.unnormalised_walk, "unnormalised_weights"),
-    (a.clipped_search, "unnormalised_weights"),
-    (a.guarded_walk, "unnormalised_weights"),
-    (a.last_set_to_one, "unnormalised_weights"),
+    (a.clipped_search, "shortfall_to_last"),
+    (a.guarded_walk, "shortfall_to_last"),
+    (a.last_set_to_one, "shortfall_to_last"),
     (a.cumsum_rounds, "cumsum_not_one"),
     (a.cumsum_rounds_walk, "cumsum_not_one"),
     (a.left_side, "boundary_side"),
@@ -55,6 +55,7 @@ NEW_KEYS = {
     "fixed_offset",
     "multinomial",
     "unnormalised_weights",
+    "shortfall_to_last",
     "cumsum_not_one",
     "boundary_side",
     "weights_not_indices",
@@ -163,11 +164,18 @@ def test_stratified_resampling_is_named_and_does_not_pass(fn):
     assert "one offset for all" in result.hint and "one U for all" in result.hint
 
 
-def test_positions_k_minus_u_over_n_are_systematic_resampling_and_pass():
-    """(k − U)/N for k = 1 … N is (i + U')/N with U' = 1 − U: one offset for all, as right as (i + U)/N."""
-    result = kf.check.resample_systematic(a.systematic_k_minus_u)
+@pytest.mark.parametrize("fn", [a.systematic_k_minus_u, a.systematic_k_minus_u_walk])
+def test_positions_k_minus_u_over_n_are_systematic_resampling_and_pass(fn):
+    """(k − U)/N for k = 1 … N is (i + U')/N with U' = 1 − U: one offset for all, as right as (i + U)/N, whether the
+    last position is kept below 1 or lands in the last slice (c_(N−1), c_N]."""
+    result = kf.check.resample_systematic(fn)
     assert result.passed and result.mistake is None, result.message
     assert "1 − U" in result.headline
+
+
+def test_positions_k_minus_u_over_n_as_floats_are_named():
+    result = kf.check.resample_systematic(a.systematic_k_minus_u_floats)
+    assert not result.passed and result.mistake == "float_indices", result.message
 
 
 # ------------------------------------------------------------ functions that misbehave
