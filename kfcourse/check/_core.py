@@ -153,12 +153,12 @@ class Variant:
 class Step:
     """One step of a chapter's equations, isolated: inputs under which the right answer is that step's alone.
 
-    With c = 0 the update of chapter 3 hands the prediction back unchanged, so only (1)-(2) count; with
-    a = 1, b = 0 and R = 0 the prediction is the prior, so only the update (3)-(5) counts.
+    With c = 0 the update of chapter 3 hands the prediction back unchanged, so the answer is (1)-(2) alone;
+    with a = 1, b = 0 and R = 0 the prediction is the prior, so it is the update (3)-(5) alone.
     """
 
     inputs: str  #: the isolating inputs, as the verdict says them: "c = 0"
-    equations: str  #: what alone counts there: "the prediction (1)-(2)"
+    equations: str  #: what alone gives the answer there: "the prediction (1)-(2)"
     isolate: Callable  #: the inputs of a case (a dict) -> the same with the isolating values put in
 
 
@@ -419,9 +419,8 @@ def _diagnosis(student_fn, reference, cases, number, steps, probes, returns, pai
         if None in agree:  # the isolating inputs are outside what the right function takes: nothing to say
             continue
         right.append(all(agree))
-        said.append(
-            f"with {step.inputs} only {step.equations} counts, and yours is {'right' if right[-1] else 'wrong'} there"
-        )
+        verdict = "right" if right[-1] else "wrong"
+        said.append(f"with {step.inputs} the answer is {step.equations} alone, and yours is {verdict} there")
     if len(right) > 1 and all(right):
         said.append("so what is wrong shows only where both act at once")
     if probes and _quietly(student_fn, cases[number])[0] == "returned":

@@ -9,7 +9,7 @@ from __future__ import annotations
 import numpy as np
 
 from .. import filters, models
-from ._core import Case, CheckResult, Variant, run_check
+from ._core import Case, CheckResult, Probe, Step, Variant, run_check
 from .exercises import _function
 
 DT = 0.2  # s, the capstone's time step
@@ -284,6 +284,28 @@ def _variants() -> list[Variant]:
     ]
 
 
+# Chapter 10's step, the prediction and the updates apart, and its inputs one at a time (run_check's diagnosis).
+STEPS = (
+    Step(
+        "no reading (z and landmarks empty)",
+        "the prediction μ̄ = g(μ, u), Σ̄ = GΣGᵀ + W M Wᵀ",
+        lambda i: {**i, "z": np.zeros((0, 2)), "landmarks": np.zeros((0, 2))},
+    ),
+    Step(
+        "u = 0 and M = 0",
+        "the updates",
+        lambda i: {**i, "u": np.zeros(2), "M": np.zeros((2, 2))},
+    ),
+)
+PROBES = (
+    Probe("Sig", lambda x: x + 0.01 * np.eye(3), "the prediction, Σ̄ = GΣGᵀ + W M Wᵀ"),
+    Probe("u", lambda x: x + np.array([0.1, 0.1]), "the prediction, μ̄ = g(μ, u), and its G and W"),
+    Probe("M", lambda x: 2.0 * x, "the prediction, Σ̄ = GΣGᵀ + W M Wᵀ"),
+    Probe("Q", lambda x: 2.0 * x, "the updates, S = HΣHᵀ + Q"),
+    Probe("z", lambda x: x + np.array([0.05, 0.02]), "the updates, ν = z − h(μ)"),
+)
+
+
 def localization_step(student_fn, seed: int = 0) -> CheckResult:
     """Check your ``localization_step(mu, Sig, u, z, landmarks, dt, M, Q, gate)`` against
     :func:`kfcourse.ekf_localization_step`.
@@ -314,4 +336,6 @@ def localization_step(student_fn, seed: int = 0) -> CheckResult:
         _variants(),
         ("mu", "Sig", "used"),
         WHERE,
+        steps=STEPS,
+        probes=PROBES,
     )

@@ -215,6 +215,35 @@ def _student_step(mu, Sig, u, z, landmarks, dt, M, Q, gate, **bug):
     return mu, Sig, used
 
 
+def localization_M_and_Q_swapped(mu, Sig, u, z, landmarks, dt, M, Q, gate):
+    return localization_step(mu, Sig, u, z, landmarks, dt, Q, M, gate)  # wrong: the two noises swapped
+
+
+def localization_innovation_backwards(mu, Sig, u, z, landmarks, dt, M, Q, gate):
+    G, W = kf.unicycle_jacobian(mu, u, dt), kf.unicycle_control_jacobian(mu, u, dt)
+    mu, Sig = kf.unicycle(mu, u, dt), G @ Sig @ G.T + W @ M @ W.T
+    used = np.zeros(len(z), dtype=bool)
+    for j in range(len(z)):
+        H = kf.range_bearing_jacobian(mu, landmarks[j])
+        nu = kf.range_bearing(mu, landmarks[j]) - z[j]  # wrong: h(mu) - z
+        nu[1] = kf.wrap_angle(nu[1])
+        S = H @ Sig @ H.T + Q
+        if nu @ np.linalg.inv(S) @ nu > gate**2:
+            continue
+        K = Sig @ H.T @ np.linalg.inv(S)
+        mu = mu + K @ nu
+        mu[2] = kf.wrap_angle(mu[2])
+        Sig = (np.eye(3) - K @ H) @ Sig
+        used[j] = True
+    return mu, Sig, used
+
+
+def localization_jacobians_at_mu_bar(mu, Sig, u, z, landmarks, dt, M, Q, gate):
+    mu_bar = kf.unicycle(mu, u, dt)
+    G, W = kf.unicycle_jacobian(mu_bar, u, dt), kf.unicycle_control_jacobian(mu_bar, u, dt)  # wrong: at mu_bar
+    return localization_step(mu_bar, G @ Sig @ G.T + W @ M @ W.T, np.zeros(2), z, landmarks, dt, 0 * M, Q, gate)
+
+
 def localization_forgets_used(mu, Sig, u, z, landmarks, dt, M, Q, gate):
     G = kf.unicycle_jacobian(mu, u, dt)
     W = kf.unicycle_control_jacobian(mu, u, dt)

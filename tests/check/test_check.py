@@ -17,7 +17,7 @@ import numpy as np
 import pytest
 
 import kfcourse as kf
-from tests.check import answers
+from tests.check import answers, new_answers
 
 CHECKERS = {  # checker -> the module that holds it
     "bayes_predict": "bayes_checks",
@@ -285,8 +285,8 @@ def test_a_mistake_that_matches_on_one_case_only_is_not_named(name, fn, not_this
 def test_each_step_is_run_on_its_own_and_the_verdict_says_which_is_wrong(name, fn, prediction, update):
     result = getattr(kf.check, name)(fn)
     assert not result.passed and result.mistake is None, result.message
-    assert f"only the prediction (1)-(2) counts, and yours is {prediction} there" in result.hint
-    assert f"only the update (3)-(5) counts, and yours is {update} there" in result.hint
+    assert f"the answer is the prediction (1)-(2) alone, and yours is {prediction} there" in result.hint
+    assert f"the answer is the update (3)-(5) alone, and yours is {update} there" in result.hint
 
 
 def test_a_mistake_that_shows_only_where_both_steps_act_is_said_so():
@@ -306,6 +306,22 @@ def test_an_output_that_follows_an_input_it_should_not_is_named():
         return right_mu, right_var + 1e-3 * abs(z)  # wrong: the variance moves with the reading
 
     assert "Your var changes when z changes, and the right one does not" in kf.check.kf_1d_step(var_follows_z).hint
+
+
+@pytest.mark.parametrize(
+    ("fn", "prediction", "updates"),
+    [
+        (new_answers.localization_M_and_Q_swapped, "wrong", "wrong"),
+        (new_answers.localization_innovation_backwards, "right", "wrong"),
+        (new_answers.localization_jacobians_at_mu_bar, "wrong", "right"),
+    ],
+)
+def test_chapter_10s_step_says_whether_its_prediction_or_its_updates_are_wrong(fn, prediction, updates):
+    """The noises swapped, the innovation backwards, G and W taken at μ̄: no name, but the step at fault."""
+    result = kf.check.localization_step(fn)
+    assert not result.passed and result.mistake is None, result.message
+    assert f"Wᵀ alone, and yours is {prediction} there" in result.hint
+    assert f"the answer is the updates alone, and yours is {updates} there" in result.hint
 
 
 def test_two_mistakes_no_case_tells_apart_are_both_said_and_neither_named():
