@@ -11,7 +11,7 @@ import math
 import numpy as np
 
 from .. import filters, models, sim
-from ._core import Case, CheckResult, Variant, random_covariance, run_check
+from ._core import Case, CheckResult, Probe, Variant, random_covariance, run_check
 
 
 def _function(student_fn, name: str) -> None:
@@ -91,6 +91,15 @@ def drift_sigma(student_fn, seed: int = 0) -> CheckResult:
 
 
 # --------------------------------------------------------------- affine_gaussian
+# Each input moved alone (run_check's diagnosis): the covariance A Σ Aᵀ follows neither μ nor b.
+AFFINE_PROBES = (
+    Probe("mu", lambda x: x + 1.0, "the mean, A μ + b"),
+    Probe("Sig", lambda x: 2.0 * x, "the covariance, A Σ Aᵀ"),
+    Probe("A", lambda x: x + 0.5, "the mean A μ + b and the covariance A Σ Aᵀ"),
+    Probe("b", lambda x: x + 1.0, "the mean, A μ + b"),
+)
+
+
 def affine_gaussian(student_fn, seed: int = 0) -> CheckResult:
     """Check your ``affine_gaussian(mu, Sig, A, b)`` against :func:`kfcourse.affine_gaussian`.
 
@@ -180,7 +189,16 @@ def affine_gaussian(student_fn, seed: int = 0) -> CheckResult:
             "The mean is shifted by b: μ_y = A μ + b.",
         ),
     ]
-    return run_check("affine_gaussian", student_fn, filters.affine_gaussian, cases, variants, ("mu", "Sig"), where)
+    return run_check(
+        "affine_gaussian",
+        student_fn,
+        filters.affine_gaussian,
+        cases,
+        variants,
+        ("mu", "Sig"),
+        where,
+        probes=AFFINE_PROBES,
+    )
 
 
 # ---------------------------------------------------------------------- cv_model

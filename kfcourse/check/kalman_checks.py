@@ -185,6 +185,15 @@ def _precision_fusion(mu1, var1, mu2, var2):
     return (mu1 / var1 + mu2 / var2) / precision, 1 / precision
 
 
+# Each input moved alone (run_check's diagnosis): the fused variance follows the variances only.
+FUSE_PROBES = (
+    Probe("mu1", lambda x: x + 1.0, "the fused mean, μ = (μ₁/σ₁² + μ₂/σ₂²) / (1/σ₁² + 1/σ₂²)"),
+    Probe("var1", lambda x: 2.0 * x, "the fused variance, 1/σ² = 1/σ₁² + 1/σ₂², and the mean"),
+    Probe("mu2", lambda x: x + 1.0, "the fused mean, μ = (μ₁/σ₁² + μ₂/σ₂²) / (1/σ₁² + 1/σ₂²)"),
+    Probe("var2", lambda x: 2.0 * x, "the fused variance, 1/σ² = 1/σ₁² + 1/σ₂², and the mean"),
+)
+
+
 def fuse(student_fn, seed: int = 0) -> CheckResult:
     """Check your scalar ``fuse(mu1, var1, mu2, var2)`` against :func:`kfcourse.fuse`.
 
@@ -241,7 +250,7 @@ def fuse(student_fn, seed: int = 0) -> CheckResult:
             "adding variances is what a predict step does.",
         ),
     ]
-    return run_check("fuse", student_fn, filters.fuse, cases, variants, ("mu", "var"), where)
+    return run_check("fuse", student_fn, filters.fuse, cases, variants, ("mu", "var"), where, probes=FUSE_PROBES)
 
 
 # ------------------------------------------------------------------------ kf_step

@@ -300,6 +300,29 @@ def test_an_output_that_ignores_an_input_it_needs_is_named_with_its_equation():
     assert "Your mu does not change" not in hint  # its mean takes Q as it should
 
 
+def test_chapter_4s_fused_variance_follows_the_variances_only():
+    def var_from_the_means(mu1, var1, mu2, var2):
+        mu = (mu1 / var1 + mu2 / var2) / (1 / var1 + 1 / var2)
+        return mu, 1 / (1 / var1 + 1 / var2) + 0.01 * abs(mu1 - mu2)  # wrong: the spread of the means added
+
+    def var2_fixed(mu1, var1, mu2, var2):
+        mu = (mu1 / var1 + mu2 / var2) / (1 / var1 + 1 / var2)
+        return mu, 1 / (1 / var1 + 1 / 0.1)  # wrong: the worked example's var2 typed in
+
+    hint = kf.check.fuse(var_from_the_means).hint
+    assert "Your var changes when mu1 changes, and the right one does not" in hint and "mu2 changes" in hint
+    assert "Your var does not change when var2 changes, and the right one does: var2 enters the fused variance" in (
+        kf.check.fuse(var2_fixed).hint
+    )
+
+
+def test_chapter_2s_covariance_does_not_follow_b():
+    def plus_b_b(mu, Sig, A, b):
+        return A @ mu + b, A @ Sig @ A.T + np.outer(b, b)  # wrong: b moves the mean, not the spread
+
+    assert "Your Sig changes when b changes, and the right one does not" in kf.check.affine_gaussian(plus_b_b).hint
+
+
 def test_an_output_that_follows_an_input_it_should_not_is_named():
     def var_follows_z(mu, var, u, z, a=1.0, b=1.0, c=1.0, R=0.2, Q=0.1):
         right_mu, right_var = kf.kf_1d_step(mu, var, u, z, a, b, c, R, Q)
