@@ -123,6 +123,7 @@ MISTAKES = {
     "weights_returned_too": "the new weights are returned beside the indices",
     "float_indices": "the indices are floats, and particles[indices] needs integers",
     "ignores_rng": "the random draws do not come from the rng given, so the same rng gives other particles",
+    "changes_input": "the function changes an array it was handed, in place",
     "stratified_not_systematic": "this is stratified resampling (one offset per slot), a right scheme, but the "
     "exercise asks for systematic resampling (one offset for all)",
 }
@@ -592,6 +593,42 @@ def run_check(
             details += "\ngot:\n" + _block(_named(answers[number], returns))
             hint = f"Likely mistake: {MISTAKES[mistake]}. {advice} See {where}."
             return CheckResult(False, mistake, "\n".join([headline, details, hint]), headline, details, hint)
+    changed = _changed_in_place(student_fn, cases)
+    if changed is not None:
+        number, argument = changed
+        headline = (
+            f"✘ {who} is not right yet: its answers are right, but on case {number + 1} of {len(cases)} "
+            f"({cases[number].label}) it changes its argument {argument} in place."
+        )
+        hint = (
+            f"Likely mistake: {MISTAKES['changes_input']}. The caller's {argument} is the belief it still holds: "
+            f"build a new array (x = x + ..., or start from x.copy()) instead of x += ... or x[i] = .... See {where}."
+        )
+        return CheckResult(False, "changes_input", f"{headline}\n{hint}", headline, "", hint)
     labels = list(dict.fromkeys(case.label.split(":")[0] for case in cases))  # each kind of case once, in order
     headline = f"✔ {who} matches kf.{name} on all {len(cases)} cases: {'; '.join(labels)}."
     return CheckResult(True, None, headline, headline)
+
+
+def _changed_in_place(student_fn, cases) -> tuple[int, str] | None:
+    """The first case, and the argument, that the student's function changes in place (an array it was handed
+    comes back different), or None."""
+    for number, case in enumerate(cases):
+        handed = copy.deepcopy(case.inputs)
+        try:
+            with warnings.catch_warnings(), np.errstate(all="ignore"), contextlib.redirect_stdout(io.StringIO()):
+                warnings.simplefilter("ignore")
+                student_fn(*handed.values())
+        except Exception:  # its answers were checked already; only what it did to its arguments matters here
+            pass
+        for argument, value in case.inputs.items():
+            if isinstance(value, np.ndarray) and not _same_array(handed[argument], value):
+                return number, argument
+    return None
+
+
+def _same_array(a, b) -> bool:
+    """Whether two arrays hold the same entries (NaN where NaN)."""
+    if not isinstance(a, np.ndarray) or a.shape != b.shape:
+        return False
+    return bool(np.array_equal(a, b) or (a.dtype.kind == "f" and np.array_equal(a, b, equal_nan=True)))

@@ -481,12 +481,15 @@ def test_a_function_that_returns_no_numbers_gets_a_clear_verdict():
     assert not result.passed and "bel_bar is not a number" in result.message
 
 
-def test_a_function_that_changes_its_inputs_does_not_change_the_expected_answer():
+def test_a_function_that_changes_its_inputs_is_told_so_and_does_not_change_the_expected_answer():
     def sloppy(mu, Sig, u, z, F, B, H, R, Q):
         Sig += R  # changes the caller's array
         return answers.hand_kf_step(mu, Sig - R, u, z, F, B, H, R, Q)
 
-    assert kf.check.kf_step(sloppy).passed
+    result = kf.check.kf_step(sloppy)  # its answers are right: each call had its own copy of the inputs
+    assert not result.passed and result.mistake == "changes_input", result.message
+    assert "its answers are right, but on case 1 of" in result.headline and "argument Sig in place" in result.headline
+    assert kf.check.kf_step(answers.hand_kf_step).passed  # a function that builds new arrays passes
 
 
 def test_prints_and_warnings_of_the_function_stay_quiet(capsys, recwarn):
