@@ -207,11 +207,18 @@ class CheckResult:
         return "<div>" + "".join(parts) + "</div>"
 
 
+@contextlib.contextmanager
+def _silenced():
+    """Run the student's code without letting it print or warn."""
+    with warnings.catch_warnings(), np.errstate(all="ignore"), contextlib.redirect_stdout(io.StringIO()):
+        warnings.simplefilter("ignore")
+        yield
+
+
 def _quietly(fn: Callable, case: Case):
     """Run ``fn`` on ``case`` without letting it print or warn: ("returned", value) or ("raised", error)."""
     try:
-        with warnings.catch_warnings(), np.errstate(all="ignore"), contextlib.redirect_stdout(io.StringIO()):
-            warnings.simplefilter("ignore")
+        with _silenced():
             return "returned", case.call(fn)
     except Exception as error:  # the student's code may raise anything; it becomes the verdict
         return "raised", error
@@ -286,15 +293,7 @@ def _same_outcome(mine, theirs, returns: tuple[str, ...]) -> bool:
     if mine[0] == "raised":
         return type(mine[1]) is type(theirs[1]) and str(mine[1]) == str(theirs[1])
     a, b = _parts(mine[1], returns), _parts(theirs[1], returns)
-    if a is None or b is None:
-        return False
-    for x, y in zip(a, b, strict=True):
-        x, y = _as_array(x), _as_array(y)
-        if x is None or y is None or x.shape != y.shape:
-            return False
-        if not np.allclose(x, y, rtol=RTOL, atol=ATOL, equal_nan=True):
-            return False
-    return True
+    return a is not None and b is not None and all(_close(x, y) for x, y in zip(a, b, strict=True))
 
 
 def _kind(x) -> str:
@@ -615,12 +614,8 @@ def _changed_in_place(student_fn, cases) -> tuple[int, str] | None:
     comes back different), or None."""
     for number, case in enumerate(cases):
         handed = copy.deepcopy(case.inputs)
-        try:
-            with warnings.catch_warnings(), np.errstate(all="ignore"), contextlib.redirect_stdout(io.StringIO()):
-                warnings.simplefilter("ignore")
-                student_fn(*handed.values())
-        except Exception:  # its answers were checked already; only what it did to its arguments matters here
-            pass
+        with contextlib.suppress(Exception), _silenced():  # its answers were checked already: only its arguments
+            student_fn(*handed.values())
         for argument, value in case.inputs.items():
             if isinstance(value, np.ndarray) and not _same_array(handed[argument], value):
                 return number, argument

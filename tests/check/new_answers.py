@@ -196,6 +196,8 @@ def _student_step(mu, Sig, u, z, landmarks, dt, M, Q, gate, **bug):
         at = mu_bar if bug.get("stale") else mu
         H = kf.range_bearing_jacobian(at, landmarks[j])
         nu = z[j] - kf.range_bearing(at, landmarks[j])
+        if bug.get("innovation_backwards"):
+            nu = -nu  # h(mu) - z
         if not bug.get("no_wrap"):
             nu[1] = kf.wrap_angle(nu[1])
         S = H @ Sig @ H.T + (0 if bug.get("no_Q") in ("both", "gate") else Q)
@@ -219,23 +221,8 @@ def localization_M_and_Q_swapped(mu, Sig, u, z, landmarks, dt, M, Q, gate):
     return localization_step(mu, Sig, u, z, landmarks, dt, Q, M, gate)  # wrong: the two noises swapped
 
 
-def localization_innovation_backwards(mu, Sig, u, z, landmarks, dt, M, Q, gate):
-    G, W = kf.unicycle_jacobian(mu, u, dt), kf.unicycle_control_jacobian(mu, u, dt)
-    mu, Sig = kf.unicycle(mu, u, dt), G @ Sig @ G.T + W @ M @ W.T
-    used = np.zeros(len(z), dtype=bool)
-    for j in range(len(z)):
-        H = kf.range_bearing_jacobian(mu, landmarks[j])
-        nu = kf.range_bearing(mu, landmarks[j]) - z[j]  # wrong: h(mu) - z
-        nu[1] = kf.wrap_angle(nu[1])
-        S = H @ Sig @ H.T + Q
-        if nu @ np.linalg.inv(S) @ nu > gate**2:
-            continue
-        K = Sig @ H.T @ np.linalg.inv(S)
-        mu = mu + K @ nu
-        mu[2] = kf.wrap_angle(mu[2])
-        Sig = (np.eye(3) - K @ H) @ Sig
-        used[j] = True
-    return mu, Sig, used
+def localization_innovation_backwards(*args):
+    return _student_step(*args, innovation_backwards=True)
 
 
 def localization_jacobians_at_mu_bar(mu, Sig, u, z, landmarks, dt, M, Q, gate):
