@@ -333,17 +333,9 @@ def unicycle(student_fn, seed: int = 0) -> CheckResult:
             dt=1.0,
         ),
     ]
-    for w in (
-        1e-5,
-        -1e-5,
-        1e-3,
-        -1e-3,
-        1e-2,
-        -1e-2,
-        5e-2,
-        -5e-2,
-    ):  # slow turns: the arc formula exact, the robot turning
-        cases.append(Case(f"ω = {w:g}: a slow turn", state=np.array([0.0, 0.0, 0.3]), u=np.array([2.0, w]), dt=1.0))
+    for slow in (1e-5, 1e-3, 1e-2, 5e-2):  # slow turns, both ways: the arc formula exact, the robot turning
+        for w in (slow, -slow):
+            cases.append(Case(f"ω = {w:g}: a slow turn", state=np.array([0.0, 0.0, 0.3]), u=np.array([2.0, w]), dt=1.0))
     while len(cases) < 25:
         state = np.array([*rng.uniform(-5, 5, 2), rng.uniform(-np.pi, np.pi)])
         u, dt = np.array([rng.uniform(-1, 2), rng.uniform(-1.5, 1.5)]), float(rng.uniform(0.05, 1.0))
