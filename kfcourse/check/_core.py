@@ -58,6 +58,10 @@ MISTAKES = {
     "atan_not_atan2": "atan is used instead of atan2",
     "atan2_arguments_swapped": "atan2's arguments are swapped: it takes (Δy, Δx)",
     "robot_minus_landmark": "Δx and Δy point from the landmark to the robot (robot minus landmark)",
+    "position_entries_flipped": (
+        "every position entry of H has the wrong sign: Δx and Δy taken from the landmark to the robot, or H "
+        "differentiated with respect to the landmark's position instead of the robot's"
+    ),
     "wrap_shifted_by_pi": "the angle is wrapped by (φ mod 2π) − π, which also turns it by π",
     "heading_sign": "the heading θ enters with the wrong sign",
     "degrees": "an angle is in degrees where radians belong",
@@ -170,6 +174,11 @@ class Probe:
     name: str  #: the input, as the function names it
     move: Callable  #: its value -> another value
     enters: str  #: where it enters, by the chapter's numbers: "(2), σ̄² = a²σ² + R"
+    label: str = ""  #: what moves, when it is a part of the input: "θ" of the state (default: the input's name)
+
+    @property
+    def what(self) -> str:
+        return self.label or self.name
 
 
 @dataclass(frozen=True, repr=False)
@@ -215,11 +224,13 @@ def _silenced():
         yield
 
 
-def _quietly(fn: Callable, case: Case):
-    """Run ``fn`` on ``case`` without letting it print or warn: ("returned", value) or ("raised", error)."""
+def _quietly(fn: Callable, case: Case, handed: dict | None = None):
+    """Run ``fn`` on ``case`` without letting it print or warn: ("returned", value) or ("raised", error).
+
+    ``handed``: the copy of the case's inputs to call it on, to look at afterwards (default: a fresh copy)."""
     try:
         with _silenced():
-            return "returned", case.call(fn)
+            return "returned", (case.call(fn) if handed is None else fn(*handed.values()))
     except Exception as error:  # the student's code may raise anything; it becomes the verdict
         return "raised", error
 
@@ -420,7 +431,7 @@ def _diagnosis(student_fn, reference, cases, number, steps, probes, returns, pai
             continue
         right.append(all(agree))
         verdict = "right" if right[-1] else "wrong"
-        said.append(f"with {step.inputs} the answer is {step.equations} alone, and yours is {verdict} there")
+        said.append(f"with {step.inputs} the answer is {step.equations}, and yours is {verdict} there")
     if len(right) > 1 and all(right):
         said.append("so what is wrong shows only where both act at once")
     if probes and _quietly(student_fn, cases[number])[0] == "returned":
@@ -438,10 +449,15 @@ def _agree_on(student_fn, reference, inputs: dict, returns, pair) -> bool | None
 
 
 def _probe_sentences(student_fn, reference, case, probes, returns, pair) -> list[str]:
-    """For each input moved alone on ``case``: the outputs whose following of it differs from the right ones'."""
+    """For each input moved alone on ``case``: the outputs whose following of it differs from the right ones';
+    then, when what is wrong changes with a few inputs only, those inputs.
+
+    An answer that is the right one plus an error moves, when an input moves, by the right one's change
+    plus the error's: the same amount exactly when the error does not depend on that input.  So the inputs
+    under which the two answers move by different amounts are the ones what is wrong depends on."""
     right0 = case.call(reference)
     mine0 = _answers(student_fn, dict(case.inputs), right0, pair)
-    out = []
+    out, depends, moved_any = [], [], 0
     for probe in probes:
         moved = {**case.inputs, probe.name: probe.move(copy.deepcopy(case.inputs[probe.name]))}
         right1 = _quietly(reference, Case("", **moved))
@@ -451,28 +467,48 @@ def _probe_sentences(student_fn, reference, case, probes, returns, pair) -> list
         parts = [_parts(x, returns) for x in (right0, right1[1], mine0[1], mine1[1])]
         if any(p is None for p in parts):
             continue
+        moved_any += 1
+        said = len(out)
         for name, r0, r1, m0, m1 in zip(returns, *parts, strict=True):
             follows = not _close(r0, r1)
             yours = not _close(m0, m1)
             if follows and not yours:
                 out.append(
-                    f"your {name} does not change when {probe.name} changes, and the right one does: "
-                    f"{probe.name} enters {probe.enters}"
+                    f"your {name} does not change when {probe.what} changes, and the right one does: "
+                    f"{probe.what} enters {probe.enters}"
                 )
             elif yours and not follows:
-                out.append(f"your {name} changes when {probe.name} changes, and the right one does not")
-    return out
+                out.append(f"your {name} changes when {probe.what} changes, and the right one does not")
+        deltas = [(_delta(m0, m1), _delta(r0, r1)) for r0, r1, m0, m1 in zip(*parts, strict=True)]
+        if len(out) == said and all(d is not None for pair_ in deltas for d in pair_):
+            depends += [probe] if not all(_close(mine, right) for mine, right in deltas) else []
+    if out or not depends or len(depends) > moved_any // 2:  # a sentence said it already, or it names too many
+        return out
+    names = " and ".join(probe.what for probe in depends)
+    where = "; ".join(f"{probe.what} enters {probe.enters}" for probe in depends)
+    alone = "alone" if len(depends) == 1 else "only"
+    return [
+        f"what is wrong in your answer depends on {names} {alone}: moved by itself, "
+        f"{'it changes' if len(depends) == 1 else 'each changes'} your answer by another amount than the right "
+        f"one, and every other input by the same amount. {where}"
+    ]
+
+
+def _delta(a, b):
+    """``b - a`` for two parts of an answer of one shape, or None."""
+    a, b = _as_array(a), _as_array(b)
+    return None if a is None or b is None or a.shape != b.shape else b - a
 
 
 def _close(a, b) -> bool:
-    """Whether two parts of an answer are equal within the checkers' tolerance."""
-    a, b = _as_array(a), _as_array(b)
-    return (
-        a is not None
-        and b is not None
-        and a.shape == b.shape
-        and bool(np.allclose(a, b, rtol=RTOL, atol=ATOL, equal_nan=True))
-    )
+    """Whether two parts of an answer are equal within the checkers' tolerance (other things than numbers: equal)."""
+    x, y = _as_array(a), _as_array(b)
+    if x is None or y is None:
+        try:
+            return bool(a == b)
+        except Exception:  # an array against something else: not equal
+            return False
+    return x.shape == y.shape and bool(np.allclose(x, y, rtol=RTOL, atol=ATOL, equal_nan=True))
 
 
 def _gap(expected, got, returns: tuple[str, ...]) -> float:
@@ -541,10 +577,15 @@ def run_check(
             f"student_fn must be your function itself, e.g. kf.check.{name}(my_{name}); got {student_fn!r}"
         )
     who = getattr(student_fn, "__name__", "your function")
+    if len(returns) > 1:  # every checker of several outputs knows this mistake
+        order = f"Return {', '.join(returns)}, in this order."
+        variants = [*variants, Variant("outputs_swapped", lambda *a: tuple(reversed(reference(*a))), order)]
     expected = [case.call(reference) for case in cases]
-    answers = []
+    answers, changed = [], None
     for number, case in enumerate(cases):
-        outcome = _quietly(student_fn, case)
+        handed = copy.deepcopy(case.inputs)
+        outcome = _quietly(student_fn, case, handed)
+        changed = changed or _changed_in_place(number, case.inputs, handed)
         if outcome[0] == "raised" and isinstance(outcome[1], NotImplementedError):
             headline = f"✎ Not yet: {who} raises NotImplementedError. Write its body, then run this cell again."
             return CheckResult(False, None, headline, headline)
@@ -592,7 +633,6 @@ def run_check(
             details += "\ngot:\n" + _block(_named(answers[number], returns))
             hint = f"Likely mistake: {MISTAKES[mistake]}. {advice} See {where}."
             return CheckResult(False, mistake, "\n".join([headline, details, hint]), headline, details, hint)
-    changed = _changed_in_place(student_fn, cases)
     if changed is not None:
         number, argument = changed
         headline = (
@@ -609,16 +649,12 @@ def run_check(
     return CheckResult(True, None, headline, headline)
 
 
-def _changed_in_place(student_fn, cases) -> tuple[int, str] | None:
-    """The first case, and the argument, that the student's function changes in place (an array it was handed
-    comes back different), or None."""
-    for number, case in enumerate(cases):
-        handed = copy.deepcopy(case.inputs)
-        with contextlib.suppress(Exception), _silenced():  # its answers were checked already: only its arguments
-            student_fn(*handed.values())
-        for argument, value in case.inputs.items():
-            if isinstance(value, np.ndarray) and not _same_array(handed[argument], value):
-                return number, argument
+def _changed_in_place(number: int, inputs: dict, handed: dict) -> tuple[int, str] | None:
+    """``(number, argument)`` for the first array argument the student's function changed in place (the copy
+    ``handed`` to it of the case's ``inputs`` came back different), or None."""
+    for argument, value in inputs.items():
+        if isinstance(value, np.ndarray) and not _same_array(handed[argument], value):
+            return number, argument
     return None
 
 

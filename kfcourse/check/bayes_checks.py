@@ -5,7 +5,7 @@ from __future__ import annotations
 import numpy as np
 
 from .. import filters
-from ._core import Case, CheckResult, Variant, run_check
+from ._core import Case, CheckResult, Probe, Step, Variant, run_check
 
 HALLWAY = np.array([0.5, 0.3, 0.2])  # the chapter's prior over cells A, B, C
 MOVE_RIGHT = {1: 0.8, 0: 0.2}  # one cell right, or stall
@@ -46,6 +46,34 @@ def _predict_with(belief, kernel, boundary, *, sign=1, ends=None, keep_at_wall=T
             bel_bar[end] = p * belief[start] + (0.0 if overwrite else bel_bar[end])
     return bel_bar
 
+
+# A kernel that never moves leaves the belief as it is; one that always moves one cell is the shift alone,
+# without the mixing of several offsets.
+PREDICT_STEPS = (
+    Step("the kernel {0: 1} (the robot never moves)", "the belief unchanged", lambda i: {**i, "kernel": {0: 1.0}}),
+    Step(
+        "the kernel {1: 1} (always one cell right)",
+        "the belief moved one cell right, nothing mixed",
+        lambda i: {**i, "kernel": {1: 1.0}},
+    ),
+)
+# The boundary switched alone (run_check's diagnosis): it changes only what happens at the ends.
+PREDICT_PROBES = (
+    Probe(
+        "boundary",
+        lambda b: "wrap" if b == "wall" else "wall",
+        'the ends alone: at a wall ("wall") a move past the end stops in the end cell; on a ring ("wrap") cell n − 1 '
+        "leads to cell 0",
+    ),
+)
+# A likelihood equal in every cell multiplies every cell alike, and η undoes it.
+UPDATE_STEPS = (
+    Step(
+        "a likelihood of 0.5 in every cell",
+        "the belief unchanged (η undoes the common factor)",
+        lambda i: {**i, "likelihood": np.full(np.shape(i["likelihood"]), 0.5)},
+    ),
+)
 
 PREDICT_WHERE = (
     "chapter 1, the predict step: bel̄(x_t) = Σ p(x_t | u_t, x_{t−1}) bel(x_{t−1}), a sum over every start cell"
@@ -96,7 +124,17 @@ def bayes_predict(student_fn, seed: int = 0) -> CheckResult:
         Variant("wall_sends_back", lambda b, k, e: _predict_with(b, k, e, at_wall="start"), STOPS),
         Variant("overwrites_not_adds", lambda b, k, e: _predict_with(b, k, e, overwrite=True), ADDS),
     ]
-    return run_check("bayes_predict", student_fn, filters.bayes_predict, cases, variants, ("bel_bar",), PREDICT_WHERE)
+    return run_check(
+        "bayes_predict",
+        student_fn,
+        filters.bayes_predict,
+        cases,
+        variants,
+        ("bel_bar",),
+        PREDICT_WHERE,
+        steps=PREDICT_STEPS,
+        probes=PREDICT_PROBES,
+    )
 
 
 # ------------------------------------------------------------------- bayes_update
@@ -147,4 +185,6 @@ def bayes_update(student_fn, seed: int = 0) -> CheckResult:
             "Bayes' rule multiplies: bel(x) = η p(z | x) bel̄(x), cell by cell.",
         ),
     ]
-    return run_check("bayes_update", student_fn, filters.bayes_update, cases, variants, ("bel",), UPDATE_WHERE)
+    return run_check(
+        "bayes_update", student_fn, filters.bayes_update, cases, variants, ("bel",), UPDATE_WHERE, steps=UPDATE_STEPS
+    )

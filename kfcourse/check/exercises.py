@@ -11,7 +11,7 @@ import math
 import numpy as np
 
 from .. import filters, models, sim
-from ._core import Case, CheckResult, Probe, Variant, random_covariance, run_check
+from ._core import Case, CheckResult, Probe, Step, Variant, random_covariance, run_check
 
 
 def _function(student_fn, name: str) -> None:
@@ -23,6 +23,18 @@ def _function(student_fn, name: str) -> None:
 
 
 # ------------------------------------------------------------------ drift_sigma
+# One step alone is one step's spread; each input moved alone (run_check's diagnosis).
+DRIFT_STEPS = (
+    Step(
+        "n = 1", "one step's spread, σ₁ = σ", lambda i: {**i, "n": 1 if np.ndim(i["n"]) == 0 else np.ones_like(i["n"])}
+    ),
+)
+DRIFT_PROBES = (
+    Probe("step_std", lambda s: 2.0 * s + 0.01, "σ_n = σ √n"),
+    Probe("n", lambda n: 4 * np.asarray(n), "σ_n = σ √n, as its square root"),
+)
+
+
 def drift_sigma(student_fn, seed: int = 0) -> CheckResult:
     """Check your ``drift_sigma(step_std, n)`` against :func:`kfcourse.sim.drift_sigma`.
 
@@ -44,6 +56,7 @@ def drift_sigma(student_fn, seed: int = 0) -> CheckResult:
         Case("one number of steps", step_std=0.02, n=2500),
         Case("a 5 cm step, 149 steps", step_std=0.05, n=149),
         Case("a perfect step, step_std = 0", step_std=0.0, n=np.array([4, 9])),
+        Case("no step yet, n = 0", step_std=0.03, n=np.array([0, 1, 16])),
     ]
     for _ in range(6):
         n = rng.integers(2, 1000, size=int(rng.integers(1, 5)))
@@ -77,7 +90,7 @@ def drift_sigma(student_fn, seed: int = 0) -> CheckResult:
         ),
         Variant(
             "off_by_one",
-            lambda s, n: s * np.sqrt(np.asarray(n) - 1),
+            lambda s, n: s * np.sqrt(np.maximum(np.asarray(n) - 1, 0)),  # a loop from 1 to n: none at n = 0
             "After n steps n step errors have added up, not n − 1: σ √n.",
         ),
         Variant(
@@ -87,7 +100,17 @@ def drift_sigma(student_fn, seed: int = 0) -> CheckResult:
         ),
     ]
     _function(student_fn, "drift_sigma")
-    return run_check("sim.drift_sigma", student_fn, sim.drift_sigma, cases, variants, ("sigma",), where)
+    return run_check(
+        "sim.drift_sigma",
+        student_fn,
+        sim.drift_sigma,
+        cases,
+        variants,
+        ("sigma",),
+        where,
+        steps=DRIFT_STEPS,
+        probes=DRIFT_PROBES,
+    )
 
 
 # --------------------------------------------------------------- affine_gaussian
@@ -223,6 +246,14 @@ def _cv_with(dt, accel_var, *, pos=None, var=None, diagonal=False, interleaved=F
     return F, R
 
 
+# With no acceleration noise R is 0, so the answer is F alone; each input moved alone (run_check's diagnosis).
+CV_STEPS = (Step("σa² = 0", "F = [[I, Δt I], [0, I]] with R = 0", lambda i: {**i, "accel_var": 0.0}),)
+CV_PROBES = (
+    Probe("accel_var", lambda q: 2.0 * q + 1.0, "R = σa² Γ Γᵀ alone, not F"),
+    Probe("dt", lambda dt: 1.5 * dt, "F's Δt I and every entry of R, through Γ = [½Δt² I; Δt I]"),
+)
+
+
 def cv_model(student_fn, seed: int = 0) -> CheckResult:
     """Check your ``cv_model(dt, accel_var)`` against chapter 6's ``F`` and ``R``.
 
@@ -288,4 +319,6 @@ def cv_model(student_fn, seed: int = 0) -> CheckResult:
     ]
     _function(student_fn, "cv_model")
     reference = "models.constant_velocity(dt, 2)[0] and kf.sim.process_noise"
-    return run_check(reference, student_fn, _cv_reference, cases, variants, ("F", "R"), where)
+    return run_check(
+        reference, student_fn, _cv_reference, cases, variants, ("F", "R"), where, steps=CV_STEPS, probes=CV_PROBES
+    )

@@ -44,8 +44,8 @@ def _kf_1d_with(
 
 # Chapter 3's step, one equation group at a time, and its inputs one at a time (run_check's diagnosis).
 KF_1D_STEPS = (
-    Step("c = 0", "the prediction (1)-(2)", lambda i: {**i, "c": 0.0}),
-    Step("a = 1, b = 0 and R = 0", "the update (3)-(5)", lambda i: {**i, "a": 1.0, "b": 0.0, "R": 0.0}),
+    Step("c = 0", "the prediction (1)-(2) alone", lambda i: {**i, "c": 0.0}),
+    Step("a = 1, b = 0 and R = 0", "the update (3)-(5) alone", lambda i: {**i, "a": 1.0, "b": 0.0, "R": 0.0}),
 )
 KF_1D_PROBES = (
     Probe("mu", lambda x: x + 1.0, "(1), μ̄ = aμ + bu"),
@@ -83,6 +83,14 @@ def kf_1d_step(student_fn, seed: int = 0) -> CheckResult:
         Case("chapter 3's worked example: cycle 1", mu=2.0, var=0.4, u=1.0, z=3.6, **defaults),
         Case("chapter 3's worked example: cycle 2", mu=cyc1[0], var=cyc1[1], u=1.0, z=4.7, **defaults),
         Case("a perfectly known start, var = 0", mu=0.5, var=0.0, u=-1.0, z=0.2, **defaults),
+        Case(
+            "known exactly, var = 0 and R = 0: σ̄² = 0, K = 0",
+            mu=0.5,
+            var=0.0,
+            u=-1.0,
+            z=0.2,
+            **{**defaults, "R": 0.0},
+        ),
         Case("a ≠ 1, c ≠ 1", mu=1.0, var=0.5, u=0.3, z=2.0, a=0.9, b=2.0, c=1.5, R=0.05, Q=0.3),
     ]
     for _ in range(10):
@@ -186,6 +194,15 @@ def _precision_fusion(mu1, var1, mu2, var2):
 
 
 # Each input moved alone (run_check's diagnosis): the fused variance follows the variances only.
+# Equal variances weigh the means alike; equal means leave only the variance to fuse.
+FUSE_STEPS = (
+    Step(
+        "σ₁² = σ₂²",
+        "the plain average of the means, with half the variance",
+        lambda i: {**i, "var2": i["var1"]},
+    ),
+    Step("μ₁ = μ₂", "that same mean, whatever the weights, and the fused variance", lambda i: {**i, "mu2": i["mu1"]}),
+)
 FUSE_PROBES = (
     Probe("mu1", lambda x: x + 1.0, "the fused mean, μ = (μ₁/σ₁² + μ₂/σ₂²) / (1/σ₁² + 1/σ₂²)"),
     Probe("var1", lambda x: 2.0 * x, "the fused variance, 1/σ² = 1/σ₁² + 1/σ₂², and the mean"),
@@ -250,7 +267,9 @@ def fuse(student_fn, seed: int = 0) -> CheckResult:
             "adding variances is what a predict step does.",
         ),
     ]
-    return run_check("fuse", student_fn, filters.fuse, cases, variants, ("mu", "var"), where, probes=FUSE_PROBES)
+    return run_check(
+        "fuse", student_fn, filters.fuse, cases, variants, ("mu", "var"), where, steps=FUSE_STEPS, probes=FUSE_PROBES
+    )
 
 
 # ------------------------------------------------------------------------ kf_step
@@ -294,10 +313,10 @@ def _kf_variant(mistake: str, knob: str, hint: str, value=True) -> Variant:
 
 # Chapter 5's step, one equation group at a time, and its inputs one at a time (run_check's diagnosis).
 KF_STEPS = (
-    Step("H = 0", "the prediction (1)-(2)", lambda i: {**i, "H": np.zeros_like(i["H"])}),
+    Step("H = 0", "the prediction (1)-(2) alone", lambda i: {**i, "H": np.zeros_like(i["H"])}),
     Step(
         "F = I, B = 0 and R = 0",
-        "the update (3)-(5)",
+        "the update (3)-(5) alone",
         lambda i: {**i, "F": np.eye(len(i["mu"])), "B": np.zeros_like(i["B"]), "R": np.zeros_like(i["R"])},
     ),
 )

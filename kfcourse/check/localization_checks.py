@@ -163,6 +163,11 @@ def _cases(rng) -> list[Case]:
         cases.append(
             case(f"a reading {label} ({distance:g} standard deviations)", ahead, unsure, straight, z, gate_landmark)
         )
+    sure = np.diag([4e-4, 4e-4, 1e-4])  # a belief 2 cm wide: S is about Q, whose entries are far below 1
+    z = _reading_at(20.0, ahead, sure, straight, gate_landmark, [1.0, 0.02])
+    cases.append(
+        case("a stray reading against a sure belief (20 standard deviations)", ahead, sure, straight, z, gate_landmark)
+    )
     cases += [
         case(
             "two readings: the second is linearized where the first left the estimate",
@@ -288,12 +293,12 @@ def _variants() -> list[Variant]:
 STEPS = (
     Step(
         "no reading (z and landmarks empty)",
-        "the prediction μ̄ = g(μ, u), Σ̄ = GΣGᵀ + W M Wᵀ",
+        "the prediction μ̄ = g(μ, u), Σ̄ = GΣGᵀ + W M Wᵀ alone",
         lambda i: {**i, "z": np.zeros((0, 2)), "landmarks": np.zeros((0, 2))},
     ),
     Step(
         "u = 0 and M = 0",
-        "the updates",
+        "the updates alone",
         lambda i: {**i, "u": np.zeros(2), "M": np.zeros((2, 2))},
     ),
 )
@@ -311,8 +316,9 @@ def localization_step(student_fn, seed: int = 0) -> CheckResult:
     :func:`kfcourse.ekf_localization_step`.
 
     The cases: chapter 10's step 60 (two landmarks in view), then one case for each classic
-    mistake (a bearing read across ±π, a reading just outside and one just inside the gate, two
-    readings, no reading, a heading turned across ±π) and seeded random steps.  Every case
+    mistake (a bearing read across ±π, a reading just outside and one just inside the gate, a stray
+    one against a sure belief, two readings, no reading, a heading turned across ±π) and seeded
+    random steps.  Every case
     uses the capstone's ``dt``, ``M``, ``Q``; the gate is 4 or ``np.inf``.  Introduced in chapter 10.
 
     Parameters

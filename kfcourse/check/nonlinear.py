@@ -7,7 +7,7 @@ import math
 import numpy as np
 
 from .. import models
-from ._core import Case, CheckResult, Variant, run_check
+from ._core import Case, CheckResult, Probe, Step, Variant, run_check
 
 ROBOT = np.array([1.0, 2.0, 0.0])  # chapter 7's worked example: robot (1, 2, 0) ...
 LANDMARK = np.array([4.0, 6.0])  # ... and landmark (4, 6)
@@ -39,6 +39,51 @@ def _sensor_cases(rng) -> list[Case]:
         if abs(abs(models.range_bearing(state, landmark)[1]) - np.pi) > 1e-3:  # stay clear of the ±π seam
             cases.append(Case("random poses and landmarks", state=state, landmark=landmark))
     return cases
+
+
+def _moved(index: int, by: float):
+    """A probe's move: the array with entry ``index`` moved by ``by``."""
+
+    def move(a):
+        a = np.array(a, dtype=float)
+        a[index] += by
+        return a
+
+    return move
+
+
+# Each part of the pose and of the landmark moved alone (run_check's diagnosis): r follows the offset
+# (Δx, Δy) alone, φ the offset and θ; H follows the offset alone, never θ.
+OFFSET = "Δx = m_x − x and Δy = m_y − y, and through them r = √q and φ = atan2(Δy, Δx) − θ"
+SENSOR_PROBES = (
+    Probe("state", _moved(0, 0.5), OFFSET, "the robot's x"),
+    Probe("state", _moved(1, 0.5), OFFSET, "the robot's y"),
+    Probe("state", _moved(2, 0.3), "the bearing only, φ = atan2(Δy, Δx) − θ", "the heading θ"),
+    Probe("landmark", _moved(0, 0.5), OFFSET, "the landmark's m_x"),
+    Probe("landmark", _moved(1, 0.5), OFFSET, "the landmark's m_y"),
+)
+ENTRIES = "every entry of H but ∂φ/∂θ = −1, through Δx, Δy and q"
+JACOBIAN_PROBES = (
+    Probe("state", _moved(0, 0.5), ENTRIES, "the robot's x"),
+    Probe("state", _moved(1, 0.5), ENTRIES, "the robot's y"),
+    Probe("state", _moved(2, 0.3), "no entry of H (φ has − θ, whose derivative is −1)", "the heading θ"),
+    Probe("landmark", _moved(0, 0.5), ENTRIES, "the landmark's m_x"),
+    Probe("landmark", _moved(1, 0.5), ENTRIES, "the landmark's m_y"),
+)
+
+
+def _heading(theta: float):
+    """A step's isolation: the robot's heading set to ``theta``."""
+
+    def isolate(inputs: dict) -> dict:
+        state = np.array(inputs["state"], dtype=float)
+        state[2] = theta
+        return {**inputs, "state": state}
+
+    return isolate
+
+
+SENSOR_STEPS = (Step("the heading θ = 0", "r = √q and the landmark's direction atan2(Δy, Δx) alone", _heading(0.0)),)
 
 
 # ------------------------------------------------------------------ range_bearing
@@ -134,7 +179,17 @@ def range_bearing(student_fn, seed: int = 0) -> CheckResult:
         _rb_variant("q_not_sqrt_q", "The range is the distance √q = √(Δx² + Δy²), not its square q.", q=True),
         _rb_variant("outputs_swapped", "Return [r, φ]: the range first, then the bearing.", swapped=True),
     ]
-    return run_check("range_bearing", student_fn, models.range_bearing, cases, variants, ("z",), where)
+    return run_check(
+        "range_bearing",
+        student_fn,
+        models.range_bearing,
+        cases,
+        variants,
+        ("z",),
+        where,
+        steps=SENSOR_STEPS,
+        probes=SENSOR_PROBES,
+    )
 
 
 # --------------------------------------------------------- range_bearing_jacobian
@@ -206,9 +261,9 @@ def range_bearing_jacobian(student_fn, seed: int = 0) -> CheckResult:
             range_sign=True,
         ),
         _jacobian_variant(
-            "robot_minus_landmark",
-            "Δx and Δy point from the robot to the landmark (landmark minus robot); moving the robot "
-            "toward the landmark shortens the range, so ∂r/∂x = −Δx/√q.",
+            "position_entries_flipped",
+            "H is the derivative with respect to the robot's pose, with Δx = m_x − x and Δy = m_y − y pointing from "
+            "the robot to the landmark: moving the robot toward the landmark shortens the range, so ∂r/∂x = −Δx/√q.",
             d_sign=-1.0,
         ),
         _jacobian_variant(
@@ -254,10 +309,38 @@ def range_bearing_jacobian(student_fn, seed: int = 0) -> CheckResult:
         ("H",),
         where + " (check each entry against kf.numeric_jacobian while you derive it)",
         approximation=(1e-12, "numeric_not_derived", NUMERIC),
+        probes=JACOBIAN_PROBES,
     )
 
 
 # ----------------------------------------------------------------------- unicycle
+def _control(V=None, omega=None):
+    """A step's isolation: the control's speed V or turn rate ω set."""
+
+    def isolate(inputs: dict) -> dict:
+        u = np.array(inputs["u"], dtype=float)
+        u[0] = u[0] if V is None else V
+        u[1] = u[1] if omega is None else omega
+        return {**inputs, "u": u}
+
+    return isolate
+
+
+# With ω = 0 the robot drives the straight line alone, with V = 0 it turns on the spot alone.
+MOTION_STEPS = (
+    Step("ω = 0", "the straight line x' = x + VΔt cos θ, y' = y + VΔt sin θ, θ' = θ", _control(omega=0.0)),
+    Step("V = 0", "the turn on the spot: x' = x, y' = y, θ' = θ + ωΔt wrapped", _control(V=0.0)),
+)
+ARC = "x' and y' along the arc (or the straight line), and θ' = θ + ωΔt"
+MOTION_PROBES = (
+    Probe("state", _moved(0, 0.5), "x' = x + ..., and nothing else", "the robot's x"),
+    Probe("state", _moved(2, 0.3), "every line: the arc's direction and θ' = θ + ωΔt", "the heading θ"),
+    Probe("u", _moved(0, 0.5), "x' and y', the distance driven (V/ω on the arc, VΔt on the line)", "the speed V"),
+    Probe("u", _moved(1, 0.2), ARC, "the turn rate ω"),
+    Probe("dt", lambda dt: dt * 1.5, ARC, "the time step Δt"),
+)
+
+
 NEAR_ZERO = 1e-9  # |ω| below which a right answer may drive the straight line: the arc formula is exact above ~1e-6
 
 
@@ -398,4 +481,14 @@ def unicycle(student_fn, seed: int = 0) -> CheckResult:
             no_dt_in_distance=True,
         ),
     ]
-    return run_check("unicycle", student_fn, models.unicycle, cases, variants, ("state",), where)
+    return run_check(
+        "unicycle",
+        student_fn,
+        models.unicycle,
+        cases,
+        variants,
+        ("state",),
+        where,
+        steps=MOTION_STEPS,
+        probes=MOTION_PROBES,
+    )

@@ -5,7 +5,7 @@ from __future__ import annotations
 import numpy as np
 
 from .. import filters
-from ._core import ATOL, RTOL, Case, CheckResult, Variant, random_covariance, run_check
+from ._core import ATOL, RTOL, Case, CheckResult, Probe, Step, Variant, random_covariance, run_check
 
 CH9_WEIGHTS = "w₀ = λ/(n + λ), wᵢ = 1/(2(n + λ))"
 
@@ -58,6 +58,15 @@ def _pair_points(expected, got):
         distance[order] = np.inf  # each of the student's points is paired once
         order.append(int(np.argmin(distance)))
     return (chi[order], wm[order], wc[order]) if np.allclose(mine[order], theirs, rtol=RTOL, atol=ATOL) else got
+
+
+# Each input moved alone (run_check's diagnosis): μ moves every point and no weight; Σ spreads the points and
+# leaves the weights; λ changes both.
+SIGMA_PROBES = (
+    Probe("mu", lambda x: x + 1.0, "every point, χ₀ = μ and χᵢ = μ ± Lᵢ, and no weight"),
+    Probe("Sig", lambda x: 2.0 * x, "the spread L of the points (L Lᵀ = (n + λ)Σ), and no weight"),
+    Probe("lam", lambda x: x + 0.5, "the spread L (through n + λ) and every weight"),
+)
 
 
 def sigma_points(student_fn, seed: int = 0) -> CheckResult:
@@ -144,7 +153,15 @@ def sigma_points(student_fn, seed: int = 0) -> CheckResult:
         ),
     ]
     return run_check(
-        "sigma_points", student_fn, filters.sigma_points, cases, variants, ("chi", "wm", "wc"), where, pair=_pair_points
+        "sigma_points",
+        student_fn,
+        filters.sigma_points,
+        cases,
+        variants,
+        ("chi", "wm", "wc"),
+        where,
+        pair=_pair_points,
+        probes=SIGMA_PROBES,
     )
 
 
@@ -194,6 +211,23 @@ def _unscented_with(
     if covariance == "points":  # (2n+1) x (2n+1), one entry per pair of points
         return mu_y, (wc[:, None] * d) @ d.T
     return mu_y, (wc[:, None] * d).T @ d  # sum w_i (Y_i - mu_y)(Y_i - mu_y)^T
+
+
+IDENTITY = _Fn("f(x) = x", lambda X: X)
+# Through f(x) = x the points' weighted mean and covariance are μ and Σ themselves, whatever λ: the sigma points
+# and the weighted sums alone, with nothing bent by f.  Each input moved alone (run_check's diagnosis).
+UT_STEPS = (
+    Step(
+        "f(x) = x",
+        "μ and Σ themselves, from the sigma points and the weighted sums alone",
+        lambda i: {**i, "f": IDENTITY},
+    ),
+)
+UT_PROBES = (
+    Probe("mu", lambda x: x + 0.5, "the sigma points, χ₀ = μ and χᵢ = μ ± Lᵢ"),
+    Probe("Sig", lambda x: 2.0 * x, "the spread L of the sigma points (L Lᵀ = (n + λ)Σ)"),
+    Probe("lam", lambda x: x + 0.5, "the spread L (through n + λ) and every weight"),
+)
 
 
 def unscented_transform(student_fn, seed: int = 0) -> CheckResult:
@@ -296,5 +330,13 @@ def unscented_transform(student_fn, seed: int = 0) -> CheckResult:
         variant("missing_scale", "(n + λ) goes under the square root: L Lᵀ = (n + λ)Σ.", scale="out"),
     ]
     return run_check(
-        "unscented_transform", student_fn, filters.unscented_transform, cases, variants, ("mu_y", "Sig_y"), where
+        "unscented_transform",
+        student_fn,
+        filters.unscented_transform,
+        cases,
+        variants,
+        ("mu_y", "Sig_y"),
+        where,
+        steps=UT_STEPS,
+        probes=UT_PROBES,
     )

@@ -104,7 +104,7 @@ CATALOGUE = {
         (answers.jacobian_lesson_finite_differences, "numeric_not_derived"),
         (answers.jacobian_bearing_row_flipped, "bearing_row_sign"),
         (answers.jacobian_range_row_flipped, "range_row_sign"),
-        (answers.jacobian_robot_minus_landmark, "robot_minus_landmark"),
+        (answers.jacobian_robot_minus_landmark, "position_entries_flipped"),
         (answers.jacobian_q_and_r_mixed, "q_not_sqrt_q"),
         (answers.jacobian_r_in_bearing_row, "q_not_sqrt_q"),
         (answers.jacobian_q_in_range_row, "q_not_sqrt_q"),
