@@ -19,6 +19,7 @@ import contextlib
 import copy
 import html
 import io
+import math
 import re
 import traceback
 import warnings
@@ -179,6 +180,46 @@ class Probe:
     @property
     def what(self) -> str:
         return self.label or self.name
+
+
+@dataclass(frozen=True)
+class Invariant:
+    """What every right answer holds, whatever the numbers: a covariance symmetric, a belief that sums to 1."""
+
+    holds: Callable  #: (a case's inputs, the answer's parts by name) -> whether it holds
+    says: str  #: what an answer that breaks it does, as the verdict says it: "your bel does not sum to 1"
+
+
+def sums_to_one(name: str, why: str) -> Invariant:
+    """``name`` sums to 1 (``why``: what makes it)."""
+    return Invariant(
+        lambda inputs, parts: abs(float(np.sum(parts[name])) - 1.0) <= 1e-9, f"your {name} does not sum to 1: {why}"
+    )
+
+
+def is_covariance(name: str, psd: bool = True) -> Invariant:
+    """``name`` is symmetric and, unless ``psd`` is False, positive semi-definite, up to rounding.  (An unscented
+    transform with λ < 0 has a negative weight w₀, and its covariance can lose semi-definiteness.)"""
+
+    def holds(inputs, parts) -> bool:
+        a = np.asarray(parts[name], dtype=float)
+        scale = max(float(np.abs(a).max()), 1e-300)
+        if a.ndim != 2 or a.shape[0] != a.shape[1] or np.abs(a - a.T).max() > 1e-9 * scale:
+            return False
+        return not psd or bool(np.linalg.eigvalsh((a + a.T) / 2)[0] >= -1e-9 * scale)
+
+    broken = "it is not symmetric, or has a negative eigenvalue" if psd else "it is not symmetric"
+    return Invariant(holds, f"your {name} is not a covariance: {broken}")
+
+
+def angle_in_range(name: str, index: int, what: str) -> Invariant:
+    """Entry ``index`` of ``name`` (``what``: "the heading θ'") lies in (−π, π]."""
+
+    def holds(inputs, parts) -> bool:
+        a = float(np.asarray(parts[name], dtype=float).reshape(-1)[index])
+        return -math.pi - 1e-12 < a <= math.pi + 1e-12
+
+    return Invariant(holds, f"your {what} lies outside (−π, π]: wrap it (kf.wrap_angle)")
 
 
 @dataclass(frozen=True, repr=False)
@@ -415,19 +456,22 @@ def _answers(fn, inputs: dict, expected, pair):
     return _paired(_quietly(fn, Case("", **inputs)), expected, pair)
 
 
-def _diagnosis(student_fn, reference, cases, number, steps, probes, returns, pair) -> list[str]:
+def _diagnosis(student_fn, reference, cases, number, steps, probes, invariants, returns, pair) -> list[str]:
     """What the student's function does step by step and input by input: sentences that hold of it.
 
-    Each step is run alone on every case (:class:`Step`), so the verdict can say which of the chapter's
-    equations are right on their own.  Then each input of case ``number``, the first that fails, is
-    moved alone (:class:`Probe`), and an output that follows an input the right one ignores, or ignores
-    one the right one follows, is named with the equation where that input enters.  No sentence
-    guesses at a mistake: each says what the function did.
+    First what its answers break: an invariant of every right answer (:class:`Invariant`) on some case, and
+    on case ``number``, the first that fails, the right numbers in other places.  Then each step is run
+    alone on every case (:class:`Step`), so the verdict can say which of the chapter's equations are right
+    on their own.  Then each input of case ``number`` is moved alone (:class:`Probe`), and an output that
+    follows an input the right one ignores, or ignores one the right one follows, is named with the
+    equation where that input enters.  No sentence guesses at a mistake: each says what the function did.
     """
-    said, right = [], []
+    said = _broken(student_fn, reference, cases, number, invariants, returns, pair)
+    right = []
     for step in steps:
         agree = [_agree_on(student_fn, reference, step.isolate(dict(case.inputs)), returns, pair) for case in cases]
-        if None in agree:  # the isolating inputs are outside what the right function takes: nothing to say
+        agree = [a for a in agree if a is not None]  # None: the right function refuses those inputs
+        if not agree:
             continue
         right.append(all(agree))
         verdict = "right" if right[-1] else "wrong"
@@ -436,6 +480,39 @@ def _diagnosis(student_fn, reference, cases, number, steps, probes, returns, pai
         said.append("so what is wrong shows only where both act at once")
     if probes and _quietly(student_fn, cases[number])[0] == "returned":
         said += _probe_sentences(student_fn, reference, cases[number], probes, returns, pair)
+    return said
+
+
+def _broken(student_fn, reference, cases, number, invariants, returns, pair) -> list[str]:
+    """The invariants the student's answers break, each on the first case where it does; and each output that,
+    on every case where it is wrong, holds the right numbers in other places (said with case ``number``'s)."""
+    said, answers = [], []
+    for case in cases:
+        right = _parts(case.call(reference), returns)
+        outcome = _answers(student_fn, dict(case.inputs), case.call(reference), pair)
+        mine = _parts(outcome[1], returns) if outcome[0] == "returned" else None
+        answers.append((case, right, None if mine is None or any(_as_array(p) is None for p in mine) else mine))
+    for invariant in invariants:
+        for k, (case, _, mine) in enumerate(answers):
+            try:
+                broken = mine is not None and not invariant.holds(case.inputs, dict(zip(returns, mine, strict=True)))
+            except Exception:  # an answer of another shape: the invariant cannot be read
+                broken = False
+            if broken:
+                said.append(f"on case {k + 1} ({case.label}) {invariant.says}")
+                break
+    for index, name in enumerate(returns):
+        wrong = [(_as_array(right[index]), _as_array(mine[index])) for _, right, mine in answers if mine is not None]
+        wrong = [(e, m) for e, m in wrong if not _close(e, m)]
+        if wrong and all(
+            e.shape == m.shape
+            and e.size > 1
+            and np.allclose(np.sort(e, axis=None), np.sort(m, axis=None), rtol=RTOL, atol=ATOL)
+            for e, m in wrong
+        ):
+            _, right, mine = answers[number]
+            where = _wrong_entries(_as_array(mine[index]), _as_array(right[index])) if mine is not None else ""
+            said.append(f"your {name} holds the right numbers, some in the wrong places{where}")
     return said
 
 
@@ -535,6 +612,7 @@ def run_check(
     approximation: tuple[float, str, str] | None = None,
     steps: tuple[Step, ...] = (),
     probes: tuple[Probe, ...] = (),
+    invariants: tuple[Invariant, ...] = (),
 ) -> CheckResult:
     """Run ``student_fn`` on every case and compare with ``reference``; name the likely mistake.
 
@@ -567,6 +645,9 @@ def run_check(
         The chapter's steps, each with the inputs that isolate it, and the inputs to move one at a time:
         when no known mistake gives the student's answer, the verdict says which steps are right on their
         own and which outputs follow the wrong inputs (:func:`_diagnosis`).
+    invariants : tuple of Invariant
+        What every right answer holds (a covariance symmetric, a belief summing to 1): an answer that breaks
+        one is told so first.
 
     Returns
     -------
@@ -581,6 +662,10 @@ def run_check(
         order = f"Return {', '.join(returns)}, in this order."
         variants = [*variants, Variant("outputs_swapped", lambda *a: tuple(reversed(reference(*a))), order)]
     expected = [case.call(reference) for case in cases]
+    for invariant in invariants:  # what the verdict may say of an answer must hold of the right ones
+        for case, right in zip(cases, expected, strict=True):
+            if not invariant.holds(case.inputs, dict(zip(returns, _parts(right, returns), strict=True))):
+                raise AssertionError(f"kf.check.{name}: the right answer breaks '{invariant.says}' on {case.label}")
     answers, changed = [], None
     for number, case in enumerate(cases):
         handed = copy.deepcopy(case.inputs)
@@ -606,7 +691,7 @@ def run_check(
         else:
             details += "\ngot:\n" + _block(_named(outcome[1], returns))
         mistake, hint = None, "No known mistake gives this answer. "
-        found_where = _diagnosis(student_fn, reference, cases, number, steps, probes, returns, pair)
+        found_where = _diagnosis(student_fn, reference, cases, number, steps, probes, invariants, returns, pair)
         hint += "".join(f"{_sentence(sentence)}. " for sentence in found_where) + f"Compare your code with {where}."
         found = _likely_mistakes(student_fn, variants, cases, expected, number, returns, pair)
         if len(found) == 1:

@@ -5,7 +5,7 @@ from __future__ import annotations
 import numpy as np
 
 from .. import filters
-from ._core import Case, CheckResult, Probe, Step, Variant, run_check
+from ._core import Case, CheckResult, Probe, Step, Variant, run_check, sums_to_one
 
 HALLWAY = np.array([0.5, 0.3, 0.2])  # the chapter's prior over cells A, B, C
 MOVE_RIGHT = {1: 0.8, 0: 0.2}  # one cell right, or stall
@@ -134,6 +134,7 @@ def bayes_predict(student_fn, seed: int = 0) -> CheckResult:
         PREDICT_WHERE,
         steps=PREDICT_STEPS,
         probes=PREDICT_PROBES,
+        invariants=(sums_to_one("bel_bar", "a move carries probability from cell to cell, and makes or loses none"),),
     )
 
 
@@ -186,5 +187,13 @@ def bayes_update(student_fn, seed: int = 0) -> CheckResult:
         ),
     ]
     return run_check(
-        "bayes_update", student_fn, filters.bayes_update, cases, variants, ("bel",), UPDATE_WHERE, steps=UPDATE_STEPS
+        "bayes_update",
+        student_fn,
+        filters.bayes_update,
+        cases,
+        variants,
+        ("bel",),
+        UPDATE_WHERE,
+        steps=UPDATE_STEPS,
+        invariants=(sums_to_one("bel", "η = 1 / Σ p(z | x) bel̄(x) makes it"),),
     )

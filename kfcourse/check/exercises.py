@@ -11,7 +11,7 @@ import math
 import numpy as np
 
 from .. import filters, models, sim
-from ._core import Case, CheckResult, Probe, Step, Variant, random_covariance, run_check
+from ._core import Case, CheckResult, Invariant, Probe, Step, Variant, is_covariance, random_covariance, run_check
 
 
 def _function(student_fn, name: str) -> None:
@@ -26,7 +26,9 @@ def _function(student_fn, name: str) -> None:
 # One step alone is one step's spread; each input moved alone (run_check's diagnosis).
 DRIFT_STEPS = (
     Step(
-        "n = 1", "one step's spread, σ₁ = σ", lambda i: {**i, "n": 1 if np.ndim(i["n"]) == 0 else np.ones_like(i["n"])}
+        "n = 1",
+        "one step's spread, σ₁ = σ, step_std itself",
+        lambda i: {**i, "n": 1 if np.ndim(i["n"]) == 0 else np.ones_like(i["n"])},
     ),
 )
 DRIFT_PROBES = (
@@ -110,6 +112,11 @@ def drift_sigma(student_fn, seed: int = 0) -> CheckResult:
         where,
         steps=DRIFT_STEPS,
         probes=DRIFT_PROBES,
+        invariants=(
+            Invariant(
+                lambda i, p: np.all(np.asarray(p["sigma"]) >= 0), "your sigma is negative, and a spread never is"
+            ),
+        ),
     )
 
 
@@ -221,6 +228,7 @@ def affine_gaussian(student_fn, seed: int = 0) -> CheckResult:
         ("mu", "Sig"),
         where,
         probes=AFFINE_PROBES,
+        invariants=(is_covariance("Sig"),),
     )
 
 
@@ -320,5 +328,14 @@ def cv_model(student_fn, seed: int = 0) -> CheckResult:
     _function(student_fn, "cv_model")
     reference = "models.constant_velocity(dt, 2)[0] and kf.sim.process_noise"
     return run_check(
-        reference, student_fn, _cv_reference, cases, variants, ("F", "R"), where, steps=CV_STEPS, probes=CV_PROBES
+        reference,
+        student_fn,
+        _cv_reference,
+        cases,
+        variants,
+        ("F", "R"),
+        where,
+        steps=CV_STEPS,
+        probes=CV_PROBES,
+        invariants=(is_covariance("R"),),
     )

@@ -8,7 +8,7 @@ from __future__ import annotations
 import numpy as np
 
 from .. import filters
-from ._core import Case, CheckResult, Probe, Step, Variant, random_covariance, run_check
+from ._core import Case, CheckResult, Invariant, Probe, Step, Variant, is_covariance, random_covariance, run_check
 
 
 # --------------------------------------------------------------------- kf_1d_step
@@ -183,6 +183,7 @@ def kf_1d_step(student_fn, seed: int = 0) -> CheckResult:
         ch3,
         steps=KF_1D_STEPS,
         probes=KF_1D_PROBES,
+        invariants=(Invariant(lambda i, p: p["var"] >= 0, "your var is negative, and a variance never is (5)"),),
     )
 
 
@@ -202,6 +203,19 @@ FUSE_STEPS = (
         lambda i: {**i, "var2": i["var1"]},
     ),
     Step("μ₁ = μ₂", "that same mean, whatever the weights, and the fused variance", lambda i: {**i, "mu2": i["mu1"]}),
+)
+# Fusing never makes an estimate less sure than the surer of the two, and its mean lies between the two means.
+FUSE_INVARIANTS = (
+    Invariant(
+        lambda i, p: 0 <= p["var"] <= min(i["var1"], i["var2"]) * (1 + 1e-9),
+        "your var is not between 0 and the smaller of var1 and var2: fusing two estimates gives one at least as sure "
+        "as the surer of them, 1/σ² = 1/σ₁² + 1/σ₂²",
+    ),
+    Invariant(
+        lambda i, p: min(i["mu1"], i["mu2"]) - 1e-9 <= p["mu"] <= max(i["mu1"], i["mu2"]) + 1e-9,
+        "your mu is not between mu1 and mu2: the fused mean is a weighted average of the two, with weights that are "
+        "positive and sum to 1",
+    ),
 )
 FUSE_PROBES = (
     Probe("mu1", lambda x: x + 1.0, "the fused mean, μ = (μ₁/σ₁² + μ₂/σ₂²) / (1/σ₁² + 1/σ₂²)"),
@@ -268,7 +282,16 @@ def fuse(student_fn, seed: int = 0) -> CheckResult:
         ),
     ]
     return run_check(
-        "fuse", student_fn, filters.fuse, cases, variants, ("mu", "var"), where, steps=FUSE_STEPS, probes=FUSE_PROBES
+        "fuse",
+        student_fn,
+        filters.fuse,
+        cases,
+        variants,
+        ("mu", "var"),
+        where,
+        steps=FUSE_STEPS,
+        probes=FUSE_PROBES,
+        invariants=FUSE_INVARIANTS,
     )
 
 
@@ -410,5 +433,14 @@ def kf_step(student_fn, seed: int = 0) -> CheckResult:
         _kf_variant("wrong_order", "row_vector", "equation (1) is μ̄ = F μ + B u, with F on the left of μ."),
     ]
     return run_check(
-        "kf_step", student_fn, filters.kf_step, cases, variants, ("mu", "Sig"), ch5, steps=KF_STEPS, probes=KF_PROBES
+        "kf_step",
+        student_fn,
+        filters.kf_step,
+        cases,
+        variants,
+        ("mu", "Sig"),
+        ch5,
+        steps=KF_STEPS,
+        probes=KF_PROBES,
+        invariants=(is_covariance("Sig"),),
     )

@@ -9,7 +9,7 @@ from __future__ import annotations
 import numpy as np
 
 from .. import filters, models
-from ._core import Case, CheckResult, Probe, Step, Variant, run_check
+from ._core import Case, CheckResult, Probe, Step, Variant, angle_in_range, is_covariance, run_check
 from .exercises import _function
 
 DT = 0.2  # s, the capstone's time step
@@ -289,25 +289,29 @@ def _variants() -> list[Variant]:
     ]
 
 
-# Chapter 10's step, the prediction and the updates apart, and its inputs one at a time (run_check's diagnosis).
+# Chapter 10's step, the prediction, the updates and the gate apart, and its inputs one at a time (run_check's
+# diagnosis), by the exercise's numbers: (1) predict, (2) H, ν and S, (3) the gate, (4) the update, (5) the wrap.
 STEPS = (
     Step(
         "no reading (z and landmarks empty)",
-        "the prediction μ̄ = g(μ, u), Σ̄ = GΣGᵀ + W M Wᵀ alone",
+        "the prediction (1), μ̄ = g(μ, u), Σ̄ = GΣGᵀ + W M Wᵀ, alone",
         lambda i: {**i, "z": np.zeros((0, 2)), "landmarks": np.zeros((0, 2))},
     ),
     Step(
         "u = 0 and M = 0",
-        "the updates alone",
+        "the updates (2)-(5) alone",
         lambda i: {**i, "u": np.zeros(2), "M": np.zeros((2, 2))},
+    ),
+    Step(
+        "gate = ∞ (no reading refused)", "(1), (2), (4) and (5), without the gate (3)", lambda i: {**i, "gate": np.inf}
     ),
 )
 PROBES = (
-    Probe("Sig", lambda x: x + 0.01 * np.eye(3), "the prediction, Σ̄ = GΣGᵀ + W M Wᵀ"),
-    Probe("u", lambda x: x + np.array([0.1, 0.1]), "the prediction, μ̄ = g(μ, u), and its G and W"),
-    Probe("M", lambda x: 2.0 * x, "the prediction, Σ̄ = GΣGᵀ + W M Wᵀ"),
-    Probe("Q", lambda x: 2.0 * x, "the updates, S = HΣHᵀ + Q"),
-    Probe("z", lambda x: x + np.array([0.05, 0.02]), "the updates, ν = z − h(μ)"),
+    Probe("Sig", lambda x: x + 0.01 * np.eye(3), "the prediction (1), Σ̄ = GΣGᵀ + W M Wᵀ"),
+    Probe("u", lambda x: x + np.array([0.1, 0.1]), "the prediction (1), μ̄ = g(μ, u), and its G and W"),
+    Probe("M", lambda x: 2.0 * x, "the prediction (1), Σ̄ = GΣGᵀ + W M Wᵀ"),
+    Probe("Q", lambda x: 2.0 * x, "S = HΣHᵀ + Q (2), and through it the gate (3) and the update (4)"),
+    Probe("z", lambda x: x + np.array([0.05, 0.02]), "the innovation ν = z − h(μ) (2)"),
 )
 
 
@@ -344,4 +348,5 @@ def localization_step(student_fn, seed: int = 0) -> CheckResult:
         WHERE,
         steps=STEPS,
         probes=PROBES,
+        invariants=(is_covariance("Sig"), angle_in_range("mu", 2, "heading θ (5)")),
     )

@@ -15,7 +15,7 @@ from __future__ import annotations
 import numpy as np
 
 from .. import filters
-from ._core import MISTAKES, Case, CheckResult, Variant, _block, _quietly, _same_outcome, run_check
+from ._core import MISTAKES, Case, CheckResult, Invariant, Variant, _block, _quietly, _same_outcome, run_check
 
 WHERE = (
     "chapter 11, equation (6): one U ~ U[0, 1), positions p_i = (i + U)/N; cumulative sum c_i = w_0 + … + w_i "
@@ -283,6 +283,20 @@ def _verdict(headline: str, case: Case, got, mistake: str, advice: str) -> Check
     return CheckResult(False, mistake, "\n".join([headline, details, hint]), headline, details, hint)
 
 
+# N indices, each a particle's: 0 <= index < N.
+INVARIANTS = (
+    Invariant(
+        lambda i, p: np.size(p["indices"]) == len(i["w"]),
+        "your indices are not N in number: resampling draws as many particles as it is given",
+    ),
+    Invariant(
+        lambda i, p: bool(np.all((np.asarray(p["indices"]) >= 0) & (np.asarray(p["indices"]) < len(i["w"])))),
+        "your indices reach outside 0 … N − 1: every position p_i = (i + U)/N, i = 0 … N − 1, lies in [0, 1), and "
+        "its index is a particle's (6)",
+    ),
+)
+
+
 def resample_systematic(student_fn, seed: int = 0) -> CheckResult:
     """Check your ``resample_systematic(w, rng)`` against :func:`kfcourse.resample_systematic`.
 
@@ -311,7 +325,15 @@ def resample_systematic(student_fn, seed: int = 0) -> CheckResult:
     cases = _cases(np.random.default_rng(seed))
     returns = ("indices",)
     result = run_check(
-        "resample_systematic", student_fn, filters.resample_systematic, cases, _variants(), returns, WHERE, pair=_sorted
+        "resample_systematic",
+        student_fn,
+        filters.resample_systematic,
+        cases,
+        _variants(),
+        returns,
+        WHERE,
+        pair=_sorted,
+        invariants=INVARIANTS,
     )
     who = getattr(student_fn, "__name__", "your function")
     if result.passed:

@@ -5,7 +5,19 @@ from __future__ import annotations
 import numpy as np
 
 from .. import filters
-from ._core import ATOL, RTOL, Case, CheckResult, Probe, Step, Variant, random_covariance, run_check
+from ._core import (
+    ATOL,
+    RTOL,
+    Case,
+    CheckResult,
+    Probe,
+    Step,
+    Variant,
+    is_covariance,
+    random_covariance,
+    run_check,
+    sums_to_one,
+)
 
 CH9_WEIGHTS = "w₀ = λ/(n + λ), wᵢ = 1/(2(n + λ))"
 
@@ -62,6 +74,19 @@ def _pair_points(expected, got):
 
 # Each input moved alone (run_check's diagnosis): μ moves every point and no weight; Σ spreads the points and
 # leaves the weights; λ changes both.
+# One coordinate alone (n = 1, no correlation to follow) and a diagonal Σ (its root the standard deviations).
+SIGMA_STEPS = (
+    Step(
+        "n = 1 (the first coordinate of μ and Σ alone)",
+        "the points μ and μ ± √((1 + λ)σ²), with w₀ = λ/(1 + λ)",
+        lambda i: {**i, "mu": np.asarray(i["mu"])[:1], "Sig": np.asarray(i["Sig"])[:1, :1]},
+    ),
+    Step(
+        "Σ diagonal (its off-diagonal entries 0)",
+        "the points μ ± √(n + λ) σⱼ along each axis",
+        lambda i: {**i, "Sig": np.diag(np.diag(i["Sig"]))},
+    ),
+)
 SIGMA_PROBES = (
     Probe("mu", lambda x: x + 1.0, "every point, χ₀ = μ and χᵢ = μ ± Lᵢ, and no weight"),
     Probe("Sig", lambda x: 2.0 * x, "the spread L of the points (L Lᵀ = (n + λ)Σ), and no weight"),
@@ -161,7 +186,11 @@ def sigma_points(student_fn, seed: int = 0) -> CheckResult:
         ("chi", "wm", "wc"),
         where,
         pair=_pair_points,
+        steps=SIGMA_STEPS,
         probes=SIGMA_PROBES,
+        invariants=tuple(
+            sums_to_one(w, "w₀ = λ/(n + λ) and 2n times wᵢ = 1/(2(n + λ)) sum to 1, for every λ") for w in ("wm", "wc")
+        ),
     )
 
 
@@ -339,4 +368,5 @@ def unscented_transform(student_fn, seed: int = 0) -> CheckResult:
         where,
         steps=UT_STEPS,
         probes=UT_PROBES,
+        invariants=(is_covariance("Sig_y", psd=False),),
     )

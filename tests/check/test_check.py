@@ -343,8 +343,8 @@ def test_chapter_10s_step_says_whether_its_prediction_or_its_updates_are_wrong(f
     """The noises swapped, the innovation backwards, G and W taken at μ̄: no name, but the step at fault."""
     result = kf.check.localization_step(fn)
     assert not result.passed and result.mistake is None, result.message
-    assert f"Wᵀ alone, and yours is {prediction} there" in result.hint
-    assert f"the answer is the updates alone, and yours is {updates} there" in result.hint
+    assert f"Wᵀ, alone, and yours is {prediction} there" in result.hint
+    assert f"the answer is the updates (2)-(5) alone, and yours is {updates} there" in result.hint
 
 
 def test_two_mistakes_no_case_tells_apart_are_both_said_and_neither_named():

@@ -32,7 +32,7 @@ def test_an_error_that_depends_on_one_input_alone_is_traced_to_it():
 # ------------------------------------------------------------------ chapter 0, 1: steps of one formula
 def test_drift_sigma_one_step_alone():
     hint = _unnamed(kf.check.drift_sigma(lambda step_std, n: step_std * np.sqrt(n) * 1.01))
-    assert "With n = 1 the answer is one step's spread, σ₁ = σ, and yours is wrong there" in hint
+    assert "With n = 1 the answer is one step's spread, σ₁ = σ, step_std itself, and yours is wrong there" in hint
 
 
 def test_bayes_predict_no_move_and_a_pure_shift():
