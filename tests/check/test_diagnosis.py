@@ -9,6 +9,7 @@ from __future__ import annotations
 import math
 
 import numpy as np
+import pytest
 
 import kfcourse as kf
 
@@ -123,3 +124,109 @@ def test_the_same_non_number_twice_is_the_same_answer_not_a_changing_one():
     result = kf.check.resample_systematic(text_for_large_clouds)
     assert not result.passed and result.mistake is None, result.message
     assert "indices is not a number or an array of numbers" in result.headline
+
+
+# ------------------------------------------------------------------ invariants every right answer holds
+def test_a_belief_that_does_not_sum_to_one_is_told_so():
+    def unit_length(belief, likelihood):
+        p = np.asarray(likelihood) * belief
+        return p / np.linalg.norm(p)
+
+    assert "your bel does not sum to 1: η = 1 / Σ p(z | x) bel̄(x) makes it" in _unnamed(
+        kf.check.bayes_update(unit_length)
+    )
+
+
+def test_a_fused_variance_larger_than_the_surer_one_is_told_so():
+    hint = _unnamed(kf.check.fuse(lambda mu1, var1, mu2, var2: (kf.fuse(mu1, var1, mu2, var2)[0], (var1 + var2) / 2)))
+    assert "your var is not between 0 and the smaller of var1 and var2" in hint
+
+
+def test_a_covariance_that_is_not_symmetric_is_told_so():
+    def lopsided(mu, Sig, u, z, F, B, H, R, Q):
+        mu, Sig = kf.kf_step(mu, Sig, u, z, F, B, H, R, Q)
+        return mu, Sig + 0.01 * np.triu(np.ones_like(Sig), 1)
+
+    assert "your Sig is not a covariance: it is not symmetric" in _unnamed(kf.check.kf_step(lopsided))
+
+
+def test_an_angle_outside_the_range_is_told_so():
+    def wraps_only_above(state, landmark):
+        dx, dy = landmark[0] - state[0], landmark[1] - state[1]
+        phi = math.atan2(dy, dx) - state[2]
+        return np.array([math.hypot(dx, dy), phi - 2 * math.pi if phi > math.pi else phi])
+
+    assert "your bearing φ lies outside (−π, π]" in _unnamed(kf.check.range_bearing(wraps_only_above))
+
+
+def test_indices_past_the_last_particle_are_told_so():
+    def positions_from_one(w, rng):
+        c = np.cumsum(w)
+        return np.searchsorted(c / c[-1], (np.arange(1, len(w) + 1) + rng.random()) / len(w), side="right")
+
+    assert "your indices reach outside 0 … N − 1" in _unnamed(kf.check.resample_systematic(positions_from_one))
+
+
+def test_the_right_numbers_in_the_wrong_places_are_told_so():
+    def rows_swapped(state, landmark):
+        return kf.range_bearing_jacobian(state, landmark)[::-1]
+
+    assert "Your H holds the right numbers, some in the wrong places" in _unnamed(
+        kf.check.range_bearing_jacobian(rows_swapped)
+    )
+
+
+def test_an_invariant_the_right_answers_break_is_a_checker_bug_not_a_verdict():
+    from kfcourse.check._core import Case, Invariant, run_check
+
+    never = Invariant(lambda inputs, parts: False, "never holds")
+    with pytest.raises(AssertionError, match="the right answer breaks 'never holds'"):
+        run_check(
+            "fuse",
+            kf.fuse,
+            kf.fuse,
+            [Case("one", mu1=0.0, var1=1.0, mu2=1.0, var2=1.0)],
+            [],
+            ("mu", "var"),
+            "",
+            invariants=(never,),
+        )
+
+
+# ------------------------------------------------------------- chapter 9's points and chapter 10's gate apart
+def test_sigma_points_right_on_one_axis_and_a_diagonal_but_not_with_correlation():
+    def diagonal_only(mu, Sig, lam):
+        chi, wm, wc = kf.sigma_points(mu, np.diag(np.diag(Sig)), lam)
+        return chi, wm, wc
+
+    hint = _unnamed(kf.check.sigma_points(diagonal_only))
+    assert (
+        "With Σ diagonal (its off-diagonal entries 0) the answer is" in hint and "So what is wrong shows only" in hint
+    )
+
+
+def test_chapter_10s_step_right_without_its_gate():
+    def gate_with_S(mu, Sig, u, z, landmarks, dt, M, Q, gate):
+        W = kf.unicycle_control_jacobian(mu, u, dt)
+        g, G = (lambda x, c: kf.unicycle(x, c, dt)), (lambda x, c: kf.unicycle_jacobian(x, c, dt))
+        mu, Sig = kf.ekf_predict(mu, Sig, u, g, G, W @ M @ W.T)
+        used = np.zeros(len(z), dtype=bool)
+        for j, (zj, m) in enumerate(zip(np.reshape(z, (-1, 2)), np.reshape(landmarks, (-1, 2)), strict=True)):
+            H = kf.range_bearing_jacobian(mu, m)
+            nu = kf.models.range_bearing_residual(zj, kf.range_bearing(mu, m))
+            if nu @ (H @ Sig @ H.T + Q) @ nu <= gate**2:  # S, not its inverse
+                mu, Sig = kf.ekf_update(
+                    mu,
+                    Sig,
+                    zj,
+                    lambda x, m=m: kf.range_bearing(x, m),
+                    lambda x, m=m: kf.range_bearing_jacobian(x, m),
+                    Q,
+                    residual=kf.models.range_bearing_residual,
+                )
+                mu[2], used[j] = kf.wrap_angle(mu[2]), True
+        return mu, Sig, used
+
+    hint = _unnamed(kf.check.localization_step(gate_with_S))
+    assert "With gate = ∞ (no reading refused) the answer is (1), (2), (4) and (5), without the gate (3)" in hint
+    assert "without the gate (3), and yours is right there" in hint
