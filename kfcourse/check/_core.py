@@ -456,7 +456,7 @@ def _answers(fn, inputs: dict, expected, pair):
     return _paired(_quietly(fn, Case("", **inputs)), expected, pair)
 
 
-def _diagnosis(student_fn, reference, cases, number, steps, probes, invariants, returns, pair) -> list[str]:
+def _diagnosis(check: _Check, number: int) -> list[str]:
     """What the student's function does step by step and input by input: sentences that hold of it.
 
     First what its answers break: an invariant of every right answer (:class:`Invariant`) on some case, and
@@ -466,9 +466,16 @@ def _diagnosis(student_fn, reference, cases, number, steps, probes, invariants, 
     follows an input the right one ignores, or ignores one the right one follows, is named with the
     equation where that input enters.  No sentence guesses at a mistake: each says what the function did.
     """
-    said = _broken(student_fn, reference, cases, number, invariants, returns, pair)
+    student_fn, reference, cases, returns, pair = (
+        check.student_fn,
+        check.reference,
+        check.cases,
+        check.returns,
+        check.pair,
+    )
+    said = _broken(student_fn, reference, cases, number, check.invariants, returns, pair)
     right = []
-    for step in steps:
+    for step in check.steps:
         agree = [_agree_on(student_fn, reference, step.isolate(dict(case.inputs)), returns, pair) for case in cases]
         agree = [a for a in agree if a is not None]  # None: the right function refuses those inputs
         if not agree:
@@ -478,8 +485,8 @@ def _diagnosis(student_fn, reference, cases, number, steps, probes, invariants, 
         said.append(f"with {step.inputs} the answer is {step.equations}, and yours is {verdict} there")
     if len(right) > 1 and all(right):
         said.append("so what is wrong shows only where both act at once")
-    if probes and _quietly(student_fn, cases[number])[0] == "returned":
-        said += _probe_sentences(student_fn, reference, cases[number], probes, returns, pair)
+    if check.probes and _quietly(student_fn, cases[number])[0] == "returned":
+        said += _probe_sentences(student_fn, reference, cases[number], check.probes, returns, pair)
     return said
 
 
@@ -599,6 +606,85 @@ def _sentence(hint: str) -> str:
     return hint[:1].upper() + hint[1:] if re.match(r"[a-z]{2,}\b(?![.(])", hint) else hint  # not accel_var, np.sqrt
 
 
+@dataclass(frozen=True)
+class _Check:
+    """One checker's run: the verdicts of a function that fails, in one of three ways."""
+
+    name: str
+    student_fn: Callable
+    reference: Callable
+    cases: list
+    variants: list
+    returns: tuple
+    where: str
+    pair: Callable | None
+    steps: tuple
+    probes: tuple
+    invariants: tuple
+
+    @property
+    def who(self) -> str:
+        return getattr(self.student_fn, "__name__", "your function")
+
+    def _details(self, number: int, expected, outcome) -> str:
+        details = "inputs:\n" + _block(list(self.cases[number].inputs.items()), suppress_small=False)
+        details += "\nexpected:\n" + _block(_named(expected, self.returns))
+        if outcome[0] == "raised":
+            return details + _where(outcome[1], self.student_fn)
+        return details + "\ngot:\n" + _block(_named(outcome[1], self.returns))
+
+    def failed(self, number: int, outcome, expected: list, what: str) -> CheckResult:
+        """Case ``number`` fails (``what``): the case, then a mistake named when exactly one known wrong version
+        gives the student's answer on every case (both said when two do), else what the diagnosis finds."""
+        cases, returns, where = self.cases, self.returns, self.where
+        headline = (
+            f"✘ {self.who} is not right yet: on case {number + 1} of {len(cases)} ({cases[number].label}), {what}."
+        )
+        details = self._details(number, expected[number], outcome)
+        found = _likely_mistakes(self.student_fn, self.variants, cases, expected, number, returns, self.pair)
+        mistake = found[0].mistake if len(found) == 1 else None
+        if mistake:
+            hint = f"Likely mistake: {MISTAKES[mistake]}. {_sentence(found[0].hint)} See {where}."
+        elif found:  # no answer tells these apart: name neither, say both
+            either = "; or ".join(MISTAKES[variant.mistake] for variant in found)
+            hint = f"Each of these mistakes gives your answer on every case, and no case tells them apart: {either}. "
+            hint += f"See {where}."
+        else:
+            said = _diagnosis(self, number)
+            hint = "No known mistake gives this answer. " + "".join(f"{_sentence(sentence)}. " for sentence in said)
+            hint += f"Compare your code with {where}."
+        return CheckResult(False, mistake, "\n".join([headline, details, hint]), headline, details, hint)
+
+    def approximate(self, expected, answers, exact_to: float, mistake: str, advice: str) -> CheckResult | None:
+        """Every answer within the tolerance, but one farther than ``exact_to`` from the reference: an
+        approximation of the formula asked for (``mistake``), or None."""
+        gaps = [_gap(e, a, self.returns) for e, a in zip(expected, answers, strict=True)]
+        number = int(np.argmax(gaps))
+        if gaps[number] <= exact_to:
+            return None
+        headline = (
+            f"✘ {self.who} is not right yet: it agrees with kf.{self.name} only to {gaps[number]:.0e}, where the exact "
+            f"formula agrees to rounding (about 1e-15); the largest difference is on case {number + 1} of "
+            f"{len(self.cases)} ({self.cases[number].label})."
+        )
+        details = self._details(number, expected[number], ("returned", answers[number]))
+        hint = f"Likely mistake: {MISTAKES[mistake]}. {advice} See {self.where}."
+        return CheckResult(False, mistake, "\n".join([headline, details, hint]), headline, details, hint)
+
+    def in_place(self, number: int, argument: str) -> CheckResult:
+        """Right answers from a function that changes its argument ``argument`` in place on case ``number``."""
+        headline = (
+            f"✘ {self.who} is not right yet: its answers are right, but on case {number + 1} of {len(self.cases)} "
+            f"({self.cases[number].label}) it changes its argument {argument} in place."
+        )
+        hint = (
+            f"Likely mistake: {MISTAKES['changes_input']}. The caller's {argument} is the belief it still holds: "
+            f"build a new array (x = x + ..., or start from x.copy()) instead of x += ... or x[i] = .... "
+            f"See {self.where}."
+        )
+        return CheckResult(False, "changes_input", f"{headline}\n{hint}", headline, "", hint)
+
+
 def run_check(
     name: str,
     student_fn: Callable,
@@ -657,7 +743,6 @@ def run_check(
         raise ValueError(
             f"student_fn must be your function itself, e.g. kf.check.{name}(my_{name}); got {student_fn!r}"
         )
-    who = getattr(student_fn, "__name__", "your function")
     if len(returns) > 1:  # every checker of several outputs knows this mistake
         order = f"Return {', '.join(returns)}, in this order."
         variants = [*variants, Variant("outputs_swapped", lambda *a: tuple(reversed(reference(*a))), order)]
@@ -666,13 +751,14 @@ def run_check(
         for case, right in zip(cases, expected, strict=True):
             if not invariant.holds(case.inputs, dict(zip(returns, _parts(right, returns), strict=True))):
                 raise AssertionError(f"kf.check.{name}: the right answer breaks '{invariant.says}' on {case.label}")
+    check = _Check(name, student_fn, reference, cases, variants, returns, where, pair, steps, probes, invariants)
     answers, changed = [], None
     for number, case in enumerate(cases):
         handed = copy.deepcopy(case.inputs)
         outcome = _quietly(student_fn, case, handed)
         changed = changed or _changed_in_place(number, case.inputs, handed)
         if outcome[0] == "raised" and isinstance(outcome[1], NotImplementedError):
-            headline = f"✎ Not yet: {who} raises NotImplementedError. Write its body, then run this cell again."
+            headline = f"✎ Not yet: {check.who} raises NotImplementedError. Write its body, then run this cell again."
             return CheckResult(False, None, headline, headline)
         outcome = _paired(outcome, expected[number], pair)
         if outcome[0] == "raised":
@@ -683,54 +769,13 @@ def run_check(
             if what is None:
                 answers.append(outcome[1])
                 continue
-        headline = f"✘ {who} is not right yet: on case {number + 1} of {len(cases)} ({case.label}), {what}."
-        details = "inputs:\n" + _block(list(case.inputs.items()), suppress_small=False)
-        details += "\nexpected:\n" + _block(_named(expected[number], returns))
-        if outcome[0] == "raised":
-            details += _where(outcome[1], student_fn)
-        else:
-            details += "\ngot:\n" + _block(_named(outcome[1], returns))
-        mistake, hint = None, "No known mistake gives this answer. "
-        found_where = _diagnosis(student_fn, reference, cases, number, steps, probes, invariants, returns, pair)
-        hint += "".join(f"{_sentence(sentence)}. " for sentence in found_where) + f"Compare your code with {where}."
-        found = _likely_mistakes(student_fn, variants, cases, expected, number, returns, pair)
-        if len(found) == 1:
-            mistake = found[0].mistake
-            hint = f"Likely mistake: {MISTAKES[mistake]}. {_sentence(found[0].hint)} See {where}."
-        elif found:  # no answer tells these apart: name neither, say both
-            either = "; or ".join(MISTAKES[variant.mistake] for variant in found)
-            hint = f"Each of these mistakes gives your answer on every case, and no case tells them apart: {either}. "
-            hint += f"See {where}."
-        message = "\n".join([headline, details, hint])
-        return CheckResult(False, mistake, message, headline, details, hint)
-    if approximation is not None:
-        exact_to, mistake, advice = approximation
-        gaps = [_gap(e, a, returns) for e, a in zip(expected, answers, strict=True)]
-        number = int(np.argmax(gaps))
-        if gaps[number] > exact_to:
-            headline = (
-                f"✘ {who} is not right yet: it agrees with kf.{name} only to {gaps[number]:.0e}, where the exact "
-                f"formula agrees to rounding (about 1e-15); the largest difference is on case {number + 1} of "
-                f"{len(cases)} ({cases[number].label})."
-            )
-            details = "inputs:\n" + _block(list(cases[number].inputs.items()), suppress_small=False)
-            details += "\nexpected:\n" + _block(_named(expected[number], returns))
-            details += "\ngot:\n" + _block(_named(answers[number], returns))
-            hint = f"Likely mistake: {MISTAKES[mistake]}. {advice} See {where}."
-            return CheckResult(False, mistake, "\n".join([headline, details, hint]), headline, details, hint)
+        return check.failed(number, outcome, expected, what)
+    if approximation is not None and (verdict := check.approximate(expected, answers, *approximation)):
+        return verdict
     if changed is not None:
-        number, argument = changed
-        headline = (
-            f"✘ {who} is not right yet: its answers are right, but on case {number + 1} of {len(cases)} "
-            f"({cases[number].label}) it changes its argument {argument} in place."
-        )
-        hint = (
-            f"Likely mistake: {MISTAKES['changes_input']}. The caller's {argument} is the belief it still holds: "
-            f"build a new array (x = x + ..., or start from x.copy()) instead of x += ... or x[i] = .... See {where}."
-        )
-        return CheckResult(False, "changes_input", f"{headline}\n{hint}", headline, "", hint)
+        return check.in_place(*changed)
     labels = list(dict.fromkeys(case.label.split(":")[0] for case in cases))  # each kind of case once, in order
-    headline = f"✔ {who} matches kf.{name} on all {len(cases)} cases: {'; '.join(labels)}."
+    headline = f"✔ {check.who} matches kf.{name} on all {len(cases)} cases: {'; '.join(labels)}."
     return CheckResult(True, None, headline, headline)
 
 
