@@ -19,6 +19,7 @@ import contextlib
 import copy
 import html
 import io
+import itertools
 import math
 import re
 import traceback
@@ -287,6 +288,8 @@ def _parts(value, returns: tuple[str, ...]):
 
 def _as_array(x):
     """``x`` as a float array, or None if it is not numbers."""
+    if x is None:
+        return None
     try:
         return np.asarray(x, dtype=float)
     except (TypeError, ValueError):
@@ -308,6 +311,8 @@ def problem(expected, got, returns: tuple[str, ...]) -> str | None:
     Every output is judged: the wrong ones are named (with the entries that differ, when
     only a few do) and, beside them, the outputs that are right.
     """
+    if got is None:
+        return "it returned None: is its return statement missing?"
     parts = _parts(got, returns)
     if parts is None:
         return f"it returned {_kind(got)}; expected {len(returns)} values ({', '.join(returns)})"
@@ -460,11 +465,12 @@ def _diagnosis(check: _Check, number: int) -> list[str]:
     """What the student's function does step by step and input by input: sentences that hold of it.
 
     First what its answers break: an invariant of every right answer (:class:`Invariant`) on some case, and
-    on case ``number``, the first that fails, the right numbers in other places.  Then each step is run
-    alone on every case (:class:`Step`), so the verdict can say which of the chapter's equations are right
-    on their own.  Then each input of case ``number`` is moved alone (:class:`Probe`), and an output that
-    follows an input the right one ignores, or ignores one the right one follows, is named with the
-    equation where that input enters.  No sentence guesses at a mistake: each says what the function did.
+    the right numbers in other places.  Then each step is run alone on every case (:class:`Step`): said
+    when the steps are right on their own, or some are and some are not; when every one is wrong, they tell
+    nothing apart and nothing is said.  Then each input of the failing cases is moved alone
+    (:class:`Probe`), and an output that follows an input the right one ignores, or ignores one the right
+    one follows, is named with the equation where that input enters.  No sentence guesses at a mistake:
+    each says what the function did.  An answer that is not finite (NaN, inf) tells nothing of the kind.
     """
     student_fn, reference, cases, returns, pair = (
         check.student_fn,
@@ -473,20 +479,53 @@ def _diagnosis(check: _Check, number: int) -> list[str]:
         check.returns,
         check.pair,
     )
-    said = _broken(student_fn, reference, cases, number, check.invariants, returns, pair)
-    right = []
+    said = _exchanged(check) + _broken(student_fn, reference, cases, number, check.invariants, returns, pair)
+    steps = []  # each step with the outputs wrong on its inputs ([] when right on every case)
     for step in check.steps:
-        agree = [_agree_on(student_fn, reference, step.isolate(dict(case.inputs)), returns, pair) for case in cases]
-        agree = [a for a in agree if a is not None]  # None: the right function refuses those inputs
-        if not agree:
-            continue
-        right.append(all(agree))
-        verdict = "right" if right[-1] else "wrong"
-        said.append(f"with {step.inputs} the answer is {step.equations}, and yours is {verdict} there")
-    if len(right) > 1 and all(right):
-        said.append("so what is wrong shows only where both act at once")
-    if check.probes and _quietly(student_fn, cases[number])[0] == "returned":
-        said += _probe_sentences(student_fn, reference, cases[number], check.probes, returns, pair)
+        wrong = [_wrong_parts(student_fn, reference, step.isolate(dict(case.inputs)), returns, pair) for case in cases]
+        wrong = [w for w in wrong if w is not None]  # None: the right function refuses those inputs
+        if wrong:
+            steps.append((step, [name for name in (*returns, "raises") if any(name in w for w in wrong)]))
+    if len(steps) < 2 or not all(outputs for _, outputs in steps):  # every one of several wrong tells nothing apart
+        for step, outputs in steps:
+            there = (
+                ", and yours is right there"
+                if not outputs
+                else ", and yours is wrong there "
+                + ("(it raises an error)" if "raises" in outputs else f"(its {' and '.join(outputs)})")
+            )
+            said.append(f"with {step.inputs} the answer is {step.equations}{there}")
+    if check.probes:
+        failing = [number] + [
+            k
+            for k in range(number + 1, len(cases))
+            if _wrong_parts(student_fn, reference, dict(cases[k].inputs), returns, pair)
+        ]
+        said += _probe_sentences(student_fn, reference, [cases[k] for k in failing[:3]], check.probes, returns, pair)
+    return said
+
+
+def _exchanged(check: _Check) -> list[str]:
+    """Each pair of inputs of one shape that, exchanged, turns the right function into the student's: on every case
+    where the two differ (two cases at least), the right answer with them exchanged is the student's."""
+    said = []
+    for a, b in itertools.combinations(check.cases[0].inputs, 2):
+        agreed = 0
+        for case in check.cases:
+            x, y = _as_array(case.inputs[a]), _as_array(case.inputs[b])
+            if x is None or y is None or x.shape != y.shape or _close(x, y):
+                continue  # not one kind of number, or equal: exchanging them tells nothing
+            right = _quietly(check.reference, Case("", **{**case.inputs, a: case.inputs[b], b: case.inputs[a]}))
+            mine = _answers(check.student_fn, dict(case.inputs), right[1], check.pair)
+            if right[0] == "raised" or not _same_outcome(mine, right, check.returns):
+                break
+            agreed += 1
+        else:
+            if agreed >= 2:
+                said.append(
+                    f"your answers are the right ones with {a} and {b} exchanged, on every case where they differ: "
+                    f"each is used where the other belongs"
+                )
     return said
 
 
@@ -502,7 +541,11 @@ def _broken(student_fn, reference, cases, number, invariants, returns, pair) -> 
     for invariant in invariants:
         for k, (case, _, mine) in enumerate(answers):
             try:
-                broken = mine is not None and not invariant.holds(case.inputs, dict(zip(returns, mine, strict=True)))
+                broken = (
+                    mine is not None
+                    and _finite(mine)
+                    and not invariant.holds(case.inputs, dict(zip(returns, mine, strict=True)))
+                )
             except Exception:  # an answer of another shape: the invariant cannot be read
                 broken = False
             if broken:
@@ -523,59 +566,87 @@ def _broken(student_fn, reference, cases, number, invariants, returns, pair) -> 
     return said
 
 
-def _agree_on(student_fn, reference, inputs: dict, returns, pair) -> bool | None:
-    """Whether the student's function gives the reference's answer on these inputs (None: the reference refuses
-    them)."""
+def _wrong_parts(student_fn, reference, inputs: dict, returns, pair) -> list[str] | None:
+    """The outputs of the student's function that differ from the reference's on these inputs (["raises"] when it
+    raises and the reference does not; [] when it agrees), or None when the reference refuses the inputs."""
     expected = _quietly(reference, Case("", **inputs))
     if expected[0] == "raised":
         return None
-    return _same_outcome(_answers(student_fn, inputs, expected[1], pair), expected, returns)
+    mine = _answers(student_fn, inputs, expected[1], pair)
+    if mine[0] == "raised":
+        return ["raises"]
+    parts = _parts(mine[1], returns)
+    if parts is None:
+        return list(returns)
+    return [name for name, m, e in zip(returns, parts, _parts(expected[1], returns), strict=True) if not _close(m, e)]
 
 
-def _probe_sentences(student_fn, reference, case, probes, returns, pair) -> list[str]:
-    """For each input moved alone on ``case``: the outputs whose following of it differs from the right ones';
-    then, when what is wrong changes with a few inputs only, those inputs.
+def _finite(parts) -> bool:
+    """Whether every part of an answer is numbers, none NaN or inf."""
+    arrays = [_as_array(p) for p in parts]
+    return all(a is not None and bool(np.isfinite(a).all()) for a in arrays)
+
+
+def _probe_sentences(student_fn, reference, failing: list, probes, returns, pair) -> list[str]:
+    """For each input moved alone on the first failing case: the outputs whose following of it differs from the
+    right ones'; then, when what is wrong changes with a few inputs only, the same on every failing case, those.
 
     An answer that is the right one plus an error moves, when an input moves, by the right one's change
     plus the error's: the same amount exactly when the error does not depend on that input.  So the inputs
     under which the two answers move by different amounts are the ones what is wrong depends on."""
-    right0 = case.call(reference)
-    mine0 = _answers(student_fn, dict(case.inputs), right0, pair)
-    out, depends, moved_any = [], [], 0
-    for probe in probes:
-        moved = {**case.inputs, probe.name: probe.move(copy.deepcopy(case.inputs[probe.name]))}
-        right1 = _quietly(reference, Case("", **moved))
-        mine1 = _answers(student_fn, moved, right1[1], pair)
-        if right1[0] == "raised" or mine1[0] == "raised":
-            continue
-        parts = [_parts(x, returns) for x in (right0, right1[1], mine0[1], mine1[1])]
-        if any(p is None for p in parts):
-            continue
-        moved_any += 1
-        said = len(out)
-        for name, r0, r1, m0, m1 in zip(returns, *parts, strict=True):
-            follows = not _close(r0, r1)
-            yours = not _close(m0, m1)
-            if follows and not yours:
-                out.append(
-                    f"your {name} does not change when {probe.what} changes, and the right one does: "
-                    f"{probe.what} enters {probe.enters}"
-                )
-            elif yours and not follows:
-                out.append(f"your {name} changes when {probe.what} changes, and the right one does not")
-        deltas = [(_delta(m0, m1), _delta(r0, r1)) for r0, r1, m0, m1 in zip(*parts, strict=True)]
-        if len(out) == said and all(d is not None for pair_ in deltas for d in pair_):
-            depends += [probe] if not all(_close(mine, right) for mine, right in deltas) else []
-    if out or not depends or len(depends) > moved_any // 2:  # a sentence said it already, or it names too many
+    out, depends = [], []
+    for number, case in enumerate(failing):
+        moves = [_moved_alone(student_fn, reference, case, probe, returns, pair) for probe in probes]
+        if number == 0:
+            for probe, parts in zip(probes, moves, strict=True):
+                if parts is None:
+                    continue
+                for name, r0, r1, m0, m1 in zip(returns, *parts, strict=True):
+                    follows, yours = not _close(r0, r1), not _close(m0, m1)
+                    if follows and not yours:
+                        out.append(
+                            f"your {name} does not change when {probe.what} changes, and the right one does: "
+                            f"{probe.what} enters {probe.enters}"
+                        )
+                    elif yours and not follows:
+                        out.append(f"your {name} changes when {probe.what} changes, and the right one does not")
+        moved = [(probe, parts) for probe, parts in zip(probes, moves, strict=True) if parts is not None]
+        depends.append({probe.what for probe, parts in moved if not _same_moves(*parts)} if len(moved) > 1 else set())
+        depends[-1] = depends[-1] if len(depends[-1]) <= len(moved) // 2 else set()  # naming most of them tells nothing
+    same = len(depends) >= 2 and all(d == depends[0] for d in depends)  # seen on one case only, it may be chance
+    traced = [probe for probe in probes if same and probe.what in depends[0]]
+    if out or not traced:
         return out
-    names = " and ".join(probe.what for probe in depends)
-    where = "; ".join(f"{probe.what} enters {probe.enters}" for probe in depends)
-    alone = "alone" if len(depends) == 1 else "only"
+    names = " and ".join(probe.what for probe in traced)
+    where = "; ".join(f"{probe.what} enters {probe.enters}" for probe in traced)
+    alone = "alone" if len(traced) == 1 else "only"
     return [
         f"what is wrong in your answer depends on {names} {alone}: moved by itself, "
-        f"{'it changes' if len(depends) == 1 else 'each changes'} your answer by another amount than the right "
-        f"one, and every other input by the same amount. {where}"
+        f"{'it changes' if len(traced) == 1 else 'each changes'} your answer by another amount than the right "
+        f"one, and every other input by the same amount, on every case that fails. {where}"
     ]
+
+
+def _moved_alone(student_fn, reference, case, probe, returns, pair):
+    """The right answer and the student's, before and after ``probe`` moves its input on ``case``: four lists of
+    parts, or None when a function raises there, an answer has another number of parts, or one is not finite."""
+    right0 = case.call(reference)
+    mine0 = _answers(student_fn, dict(case.inputs), right0, pair)
+    moved = {**case.inputs, probe.name: probe.move(copy.deepcopy(case.inputs[probe.name]))}
+    right1 = _quietly(reference, Case("", **moved))
+    mine1 = _answers(student_fn, moved, right1[1], pair)
+    if right1[0] == "raised" or mine0[0] == "raised" or mine1[0] == "raised":
+        return None
+    parts = [_parts(x, returns) for x in (right0, right1[1], mine0[1], mine1[1])]
+    if any(p is None or not _finite(p) for p in parts):
+        return None
+    return parts
+
+
+def _same_moves(r0, r1, m0, m1) -> bool:
+    """Whether the student's answer moved by the same amount as the right one, in every part."""
+    deltas = [(_delta(a0, a1), _delta(b0, b1)) for a0, a1, b0, b1 in zip(m0, m1, r0, r1, strict=True)]
+    return any(d is None for pair in deltas for d in pair) or all(_close(a, b) for a, b in deltas)
 
 
 def _delta(a, b):

@@ -51,10 +51,13 @@ def _predict_with(belief, kernel, boundary, *, sign=1, ends=None, keep_at_wall=T
 # without the mixing of several offsets.
 PREDICT_STEPS = (
     Step("the kernel {0: 1} (the robot never moves)", "the belief unchanged", lambda i: {**i, "kernel": {0: 1.0}}),
-    Step(
-        "the kernel {1: 1} (always one cell right)",
-        "the belief moved one cell right, nothing mixed",
-        lambda i: {**i, "kernel": {1: 1.0}},
+    *(
+        Step(
+            f"the kernel {{{k}: 1}} (always one cell {way})",
+            f"the belief moved one cell {way}, nothing mixed",
+            lambda i, k=k: {**i, "kernel": {k: 1.0}},
+        )
+        for k, way in ((1, "right"), (-1, "left"))
     ),
 )
 # The boundary switched alone (run_check's diagnosis): it changes only what happens at the ends.

@@ -183,7 +183,7 @@ def kf_1d_step(student_fn, seed: int = 0) -> CheckResult:
         ch3,
         steps=KF_1D_STEPS,
         probes=KF_1D_PROBES,
-        invariants=(Invariant(lambda i, p: p["var"] >= 0, "your var is negative, and a variance never is (5)"),),
+        invariants=(Invariant(lambda i, p: p["var"] >= 0, "your var is negative, and a variance never is"),),
     )
 
 

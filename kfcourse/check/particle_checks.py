@@ -291,8 +291,7 @@ INVARIANTS = (
     ),
     Invariant(
         lambda i, p: bool(np.all((np.asarray(p["indices"]) >= 0) & (np.asarray(p["indices"]) < len(i["w"])))),
-        "your indices reach outside 0 … N − 1: every position p_i = (i + U)/N, i = 0 … N − 1, lies in [0, 1), and "
-        "its index is a particle's (6)",
+        "your indices reach outside 0 … N − 1, and each must be a particle's",
     ),
 )
 

@@ -83,7 +83,7 @@ SIGMA_STEPS = (
     ),
     Step(
         "Σ diagonal (its off-diagonal entries 0)",
-        "the points μ ± √(n + λ) σⱼ along each axis",
+        "the points μ ± √(n + λ) σⱼ along each axis, with the same weights",
         lambda i: {**i, "Sig": np.diag(np.diag(i["Sig"]))},
     ),
 )

@@ -289,9 +289,23 @@ def test_each_step_is_run_on_its_own_and_the_verdict_says_which_is_wrong(name, f
     assert f"the answer is the update (3)-(5) alone, and yours is {update} there" in result.hint
 
 
-def test_a_mistake_that_shows_only_where_both_steps_act_is_said_so():
+def test_steps_right_on_their_own_are_said_so_and_nothing_is_guessed_from_it():
+    """Both steps right alone says where the mistake is not; where it is (how they join) is not a fact, so unsaid."""
     hint = kf.check.kf_1d_step(answers.kf_1d_R_in_gain_too).hint
-    assert hint.count("and yours is right there") == 2 and "shows only where both act at once" in hint
+    assert hint.count("and yours is right there") == 2 and "both act at once" not in hint
+
+
+def test_steps_that_are_all_wrong_tell_nothing_apart_and_are_not_said():
+    """F * Σ * Fᵀ entry by entry: wrong with H = 0, and wrong with F = I too (I * Σ * I keeps Σ's diagonal), although
+    the update is right: every isolation fails, none points anywhere, so no step sentence is said."""
+
+    def elementwise_predict(mu, Sig, u, z, F, B, H, R, Q):
+        mu_bar, Sig_bar = F @ mu + B @ u, F * Sig * F.T + R
+        K = Sig_bar @ H.T @ np.linalg.inv(H @ Sig_bar @ H.T + Q)
+        return mu_bar + K @ (z - H @ mu_bar), (np.eye(len(mu)) - K @ H) @ Sig_bar
+
+    hint = kf.check.kf_step(elementwise_predict).hint
+    assert "No known mistake" in hint and "alone, and yours is" not in hint
 
 
 def test_an_output_that_ignores_an_input_it_needs_is_named_with_its_equation():
@@ -331,16 +345,23 @@ def test_an_output_that_follows_an_input_it_should_not_is_named():
     assert "Your var changes when z changes, and the right one does not" in kf.check.kf_1d_step(var_follows_z).hint
 
 
+def test_chapter_10s_noises_exchanged_are_found_by_exchanging_them():
+    """M and Q swapped shows in every isolation; the right step with the two exchanged gives the student's answer."""
+    result = kf.check.localization_step(new_answers.localization_M_and_Q_swapped)
+    assert not result.passed and result.mistake is None, result.message
+    assert "Your answers are the right ones with M and Q exchanged" in result.hint
+    assert "alone, and yours is wrong there" not in result.hint  # every step wrong: not said
+
+
 @pytest.mark.parametrize(
     ("fn", "prediction", "updates"),
     [
-        (new_answers.localization_M_and_Q_swapped, "wrong", "wrong"),
         (new_answers.localization_innovation_backwards, "right", "wrong"),
         (new_answers.localization_jacobians_at_mu_bar, "wrong", "right"),
     ],
 )
 def test_chapter_10s_step_says_whether_its_prediction_or_its_updates_are_wrong(fn, prediction, updates):
-    """The noises swapped, the innovation backwards, G and W taken at μ̄: no name, but the step at fault."""
+    """The innovation backwards, G and W taken at μ̄: no name, but the step at fault."""
     result = kf.check.localization_step(fn)
     assert not result.passed and result.mistake is None, result.message
     assert f"Wᵀ, alone, and yours is {prediction} there" in result.hint

@@ -200,9 +200,7 @@ def test_sigma_points_right_on_one_axis_and_a_diagonal_but_not_with_correlation(
         return chi, wm, wc
 
     hint = _unnamed(kf.check.sigma_points(diagonal_only))
-    assert (
-        "With Σ diagonal (its off-diagonal entries 0) the answer is" in hint and "So what is wrong shows only" in hint
-    )
+    assert "With Σ diagonal (its off-diagonal entries 0) the answer is" in hint and "yours is right there" in hint
 
 
 def test_chapter_10s_step_right_without_its_gate():

@@ -189,7 +189,7 @@ def test_not_yet_is_no_failure():
     [
         (lambda w, rng: np.full(len(w), np.nan), "indices contains NaN"),
         (lambda w, rng: kf.resample_systematic(w, rng)[1:], "indices has shape (4,); expected (5,)"),
-        (lambda w, rng: None, "indices has shape (); expected (5,)"),
+        (lambda w, rng: None, "it returned None: is its return statement missing?"),
         (lambda w, rng: 1 / 0, "it raised ZeroDivisionError"),
     ],
 )
