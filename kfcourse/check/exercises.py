@@ -37,22 +37,8 @@ DRIFT_PROBES = (
 )
 
 
-def drift_sigma(student_fn, seed: int = 0) -> CheckResult:
-    """Check your ``drift_sigma(step_std, n)`` against :func:`kfcourse.sim.drift_sigma`.
-
-    ``n`` is a whole number of steps, or an array of them.  Introduced in chapter 0.
-
-    Parameters
-    ----------
-    student_fn : callable ``(step_std, n) -> sigma``, a number for a number ``n``, an array for an array
-    seed : int
-        Seed of the random cases.
-
-    Returns
-    -------
-    CheckResult
-    """
-    rng = np.random.default_rng(seed)
+def _drift_cases(rng) -> list[Case]:
+    """The cases of :func:`drift_sigma`: chapter 0's drift table, the edge cases, then seeded random ones."""
     cases = [
         Case("chapter 0's drift table: 2 cm steps", step_std=0.02, n=np.array([1, 25, 100, 400])),
         Case("one number of steps", step_std=0.02, n=2500),
@@ -63,8 +49,15 @@ def drift_sigma(student_fn, seed: int = 0) -> CheckResult:
     for _ in range(6):
         n = rng.integers(2, 1000, size=int(rng.integers(1, 5)))
         cases.append(Case("random", step_std=float(rng.uniform(0.001, 0.5)), n=n))
-    where = "chapter 0: variances add, n σ² after n steps, so σ_n = σ √n"
-    variants = [
+    return cases
+
+
+DRIFT_WHERE = "chapter 0: variances add, n σ² after n steps, so σ_n = σ √n"
+
+
+def _drift_variants() -> list[Variant]:
+    """The catalogue of :func:`drift_sigma`: each known mistake as a wrong version, with its hint."""
+    return [
         Variant(
             "std_not_var",
             lambda s, n: s**2 * np.asarray(n),
@@ -101,15 +94,33 @@ def drift_sigma(student_fn, seed: int = 0) -> CheckResult:
             "The step counts may come as an array: np.sqrt takes the root of each, math.sqrt only of one number.",
         ),
     ]
+
+
+def drift_sigma(student_fn, seed: int = 0) -> CheckResult:
+    """Check your ``drift_sigma(step_std, n)`` against :func:`kfcourse.sim.drift_sigma`.
+
+    ``n`` is a whole number of steps, or an array of them.  Introduced in chapter 0.
+
+    Parameters
+    ----------
+    student_fn : callable ``(step_std, n) -> sigma``, a number for a number ``n``, an array for an array
+    seed : int
+        Seed of the random cases.
+
+    Returns
+    -------
+    CheckResult
+    """
     _function(student_fn, "drift_sigma")
+    cases = _drift_cases(np.random.default_rng(seed))
     return run_check(
         "sim.drift_sigma",
         student_fn,
         sim.drift_sigma,
         cases,
-        variants,
+        _drift_variants(),
         ("sigma",),
-        where,
+        DRIFT_WHERE,
         steps=DRIFT_STEPS,
         probes=DRIFT_PROBES,
         invariants=(
@@ -130,23 +141,8 @@ AFFINE_PROBES = (
 )
 
 
-def affine_gaussian(student_fn, seed: int = 0) -> CheckResult:
-    """Check your ``affine_gaussian(mu, Sig, A, b)`` against :func:`kfcourse.affine_gaussian`.
-
-    Every input is an array: ``mu`` (n,), ``Sig`` (n, n), ``A`` (m, n), ``b`` (m,); the
-    lesson's one-dimensional example comes as 1-element arrays.  Introduced in chapter 2.
-
-    Parameters
-    ----------
-    student_fn : callable ``(mu (n,), Sig (n, n), A (m, n), b (m,)) -> (mu_y (m,), Sig_y (m, m))``
-    seed : int
-        Seed of the random cases.
-
-    Returns
-    -------
-    CheckResult
-    """
-    rng = np.random.default_rng(seed)
+def _affine_cases(rng) -> list[Case]:
+    """The cases of :func:`affine_gaussian`: the lesson's examples, then seeded random ones."""
 
     def one_d(label, A, b):  # X ~ N(2, 0.5), the lesson's example, as 1-element arrays
         return Case(label, mu=np.array([2.0]), Sig=np.array([[0.5]]), A=np.array([[A]]), b=np.array([b]))
@@ -188,9 +184,16 @@ def affine_gaussian(student_fn, seed: int = 0) -> CheckResult:
                 b=rng.normal(size=m),
             )
         )
-    where = "chapter 2, closure property 1: Y = A X + b ~ N(A μ + b, A Σ Aᵀ)"
+    return cases
+
+
+AFFINE_WHERE = "chapter 2, closure property 1: Y = A X + b ~ N(A μ + b, A Σ Aᵀ)"
+
+
+def _affine_variants() -> list[Variant]:
+    """The catalogue of :func:`affine_gaussian`: each known mistake as a wrong version, with its hint."""
     sandwich = "The covariance gets A on both sides, A Σ Aᵀ; in one dimension that is A² σ², not A σ²."
-    variants = [
+    return [
         Variant(
             "elementwise_not_matmul",
             lambda mu, S, A, b: (A @ mu + b, A * S * A.T),
@@ -219,14 +222,33 @@ def affine_gaussian(student_fn, seed: int = 0) -> CheckResult:
             "The mean is shifted by b: μ_y = A μ + b.",
         ),
     ]
+
+
+def affine_gaussian(student_fn, seed: int = 0) -> CheckResult:
+    """Check your ``affine_gaussian(mu, Sig, A, b)`` against :func:`kfcourse.affine_gaussian`.
+
+    Every input is an array: ``mu`` (n,), ``Sig`` (n, n), ``A`` (m, n), ``b`` (m,); the
+    lesson's one-dimensional example comes as 1-element arrays.  Introduced in chapter 2.
+
+    Parameters
+    ----------
+    student_fn : callable ``(mu (n,), Sig (n, n), A (m, n), b (m,)) -> (mu_y (m,), Sig_y (m, m))``
+    seed : int
+        Seed of the random cases.
+
+    Returns
+    -------
+    CheckResult
+    """
+    cases = _affine_cases(np.random.default_rng(seed))
     return run_check(
         "affine_gaussian",
         student_fn,
         filters.affine_gaussian,
         cases,
-        variants,
+        _affine_variants(),
         ("mu", "Sig"),
-        where,
+        AFFINE_WHERE,
         probes=AFFINE_PROBES,
         invariants=(is_covariance("Sig"),),
     )

@@ -60,23 +60,8 @@ KF_1D_PROBES = (
 )
 
 
-def kf_1d_step(student_fn, seed: int = 0) -> CheckResult:
-    """Check your ``kf_1d_step(mu, var, u, z, a, b, c, R, Q)`` against :func:`kfcourse.kf_1d_step`.
-
-    Every argument is passed, in that order (``z`` is always a number).
-    Introduced in chapter 3.
-
-    Parameters
-    ----------
-    student_fn : callable ``(mu, var, u, z, a, b, c, R, Q) -> (mu, var)``, all floats
-    seed : int
-        Seed of the random cases.
-
-    Returns
-    -------
-    CheckResult
-    """
-    rng = np.random.default_rng(seed)
+def _kf_1d_cases(rng) -> list[Case]:
+    """The cases of :func:`kf_1d_step`: chapter 3's two cycles, the edge cases, then seeded random ones."""
     defaults = {"a": 1.0, "b": 1.0, "c": 1.0, "R": 0.2, "Q": 0.1}
     cyc1 = filters.kf_1d_step(2.0, 0.4, 1.0, 3.6)
     cases = [
@@ -99,8 +84,15 @@ def kf_1d_step(student_fn, seed: int = 0) -> CheckResult:
         mu, u, z = rng.normal(0, 3, 3)
         var = rng.uniform(0, 3)
         cases.append(Case("random a, b, c, R ≠ Q", mu=mu, var=var, u=u, z=z, a=a, b=b, c=c, R=R, Q=Q))
-    ch3 = "chapter 3, equations (1)-(5)"
-    variants = [
+    return cases
+
+
+KF_1D_WHERE = "chapter 3, equations (1)-(5)"
+
+
+def _kf_1d_variants() -> list[Variant]:
+    """The catalogue of :func:`kf_1d_step`: each known mistake as a wrong version, with its hint."""
+    return [
         Variant(
             "swapped_R_Q",
             lambda mu, var, u, z, a, b, c, R, Q: _kf_1d_with(mu, var, u, z, a, b, c, Q, R),
@@ -173,14 +165,33 @@ def kf_1d_step(student_fn, seed: int = 0) -> CheckResult:
             "K = σ̄² / (σ̄² + Q) and (1 − K) are the c = 1 forms of (3) and (5): keep c in both.",
         ),
     ]
+
+
+def kf_1d_step(student_fn, seed: int = 0) -> CheckResult:
+    """Check your ``kf_1d_step(mu, var, u, z, a, b, c, R, Q)`` against :func:`kfcourse.kf_1d_step`.
+
+    Every argument is passed, in that order (``z`` is always a number).
+    Introduced in chapter 3.
+
+    Parameters
+    ----------
+    student_fn : callable ``(mu, var, u, z, a, b, c, R, Q) -> (mu, var)``, all floats
+    seed : int
+        Seed of the random cases.
+
+    Returns
+    -------
+    CheckResult
+    """
+    cases = _kf_1d_cases(np.random.default_rng(seed))
     return run_check(
         "kf_1d_step",
         student_fn,
         filters.kf_1d_step,
         cases,
-        variants,
+        _kf_1d_variants(),
         ("mu", "var"),
-        ch3,
+        KF_1D_WHERE,
         steps=KF_1D_STEPS,
         probes=KF_1D_PROBES,
         invariants=(Invariant(lambda i, p: p["var"] >= 0, "your var is negative, and a variance never is"),),
@@ -356,24 +367,8 @@ KF_PROBES = (
 )
 
 
-def kf_step(student_fn, seed: int = 0) -> CheckResult:
-    """Check your ``kf_step(mu, Sig, u, z, F, B, H, R, Q)`` against :func:`kfcourse.kf_step`.
-
-    ``u``, ``B`` and ``z`` are always arrays (no control is ``B`` of zeros).  The first case is
-    chapter 5's worked example.  Introduced in chapter 5.
-
-    Parameters
-    ----------
-    student_fn : callable ``(mu (n,), Sig (n, n), u (m,), z (k,), F (n, n), B (n, m), H (k, n), R (n, n), Q (k, k))
-        -> (mu (n,), Sig (n, n))``
-    seed : int
-        Seed of the random cases.
-
-    Returns
-    -------
-    CheckResult
-    """
-    rng = np.random.default_rng(seed)
+def _kf_cases(rng) -> list[Case]:
+    """The cases of :func:`kf_step`: chapter 5's worked example, the edge cases, then seeded random ones."""
     cases = [
         Case(
             "chapter 5's worked example: constant velocity, z = 1.2",
@@ -394,8 +389,15 @@ def kf_step(student_fn, seed: int = 0) -> CheckResult:
         n = int(rng.integers(2, 5))
         k, m = int(rng.integers(1, n + 1)), int(rng.integers(1, 3))
         cases.append(_kf_case(rng, f"random: n = {n}, k = {k}, m = {m}", n, k, m))
-    ch5 = "chapter 5, equations (1)-(5)"
-    variants = [
+    return cases
+
+
+KF_WHERE = "chapter 5, equations (1)-(5)"
+
+
+def _kf_variants() -> list[Variant]:
+    """The catalogue of :func:`kf_step`: each known mistake as a wrong version, with its hint."""
+    return [
         Variant(
             "swapped_R_Q",
             lambda mu, Sig, u, z, F, B, H, R, Q: _kf_step_with(mu, Sig, u, z, F, B, H, Q, R),
@@ -432,14 +434,34 @@ def kf_step(student_fn, seed: int = 0) -> CheckResult:
         _kf_variant("wrong_order", "right_side", "equation (5) is Σ = (I − K H) Σ̄, with (I − K H) on the left."),
         _kf_variant("wrong_order", "row_vector", "equation (1) is μ̄ = F μ + B u, with F on the left of μ."),
     ]
+
+
+def kf_step(student_fn, seed: int = 0) -> CheckResult:
+    """Check your ``kf_step(mu, Sig, u, z, F, B, H, R, Q)`` against :func:`kfcourse.kf_step`.
+
+    ``u``, ``B`` and ``z`` are always arrays (no control is ``B`` of zeros).  The first case is
+    chapter 5's worked example.  Introduced in chapter 5.
+
+    Parameters
+    ----------
+    student_fn : callable ``(mu (n,), Sig (n, n), u (m,), z (k,), F (n, n), B (n, m), H (k, n), R (n, n), Q (k, k))
+        -> (mu (n,), Sig (n, n))``
+    seed : int
+        Seed of the random cases.
+
+    Returns
+    -------
+    CheckResult
+    """
+    cases = _kf_cases(np.random.default_rng(seed))
     return run_check(
         "kf_step",
         student_fn,
         filters.kf_step,
         cases,
-        variants,
+        _kf_variants(),
         ("mu", "Sig"),
-        ch5,
+        KF_WHERE,
         steps=KF_STEPS,
         probes=KF_PROBES,
         invariants=(is_covariance("Sig"),),

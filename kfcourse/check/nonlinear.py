@@ -227,38 +227,25 @@ def _numeric_jacobian(state, landmark):
     return models.numeric_jacobian(lambda s: models.range_bearing(s, landmark), state)
 
 
-def range_bearing_jacobian(student_fn, seed: int = 0) -> CheckResult:
-    """Check your ``range_bearing_jacobian(state, landmark)`` against :func:`kfcourse.range_bearing_jacobian`.
+JACOBIAN_WHERE = (
+    "chapter 7, the Jacobian H: with Δx = m_x − x, Δy = m_y − y, q = Δx² + Δy², "
+    "H = [[−Δx/√q, −Δy/√q, 0], [Δy/q, −Δx/q, −1]]"
+)
 
-    The first case is chapter 7's worked example.  The exercise asks for H derived by hand: a
-    Jacobian differentiated numerically (``kf.numeric_jacobian`` or finite differences of your
-    own) agrees within the tolerance but only to about 1e-10, where the formula agrees to
-    rounding, and it is told so.  Introduced in chapter 7.
 
-    Parameters
-    ----------
-    student_fn : callable ``(state [x, y, theta], landmark [mx, my]) -> H (2, 3)``
-    seed : int
-        Seed of the random cases.
+NUMERIC = (
+    "kf.numeric_jacobian is the tool that checks a Jacobian; the exercise asks for the Jacobian itself: derive "
+    "each entry of H by hand from h and write the formula."
+)
 
-    Returns
-    -------
-    CheckResult
-    """
-    cases = _sensor_cases(np.random.default_rng(seed))
-    where = (
-        "chapter 7, the Jacobian H: with Δx = m_x − x, Δy = m_y − y, q = Δx² + Δy², "
-        "H = [[−Δx/√q, −Δy/√q, 0], [Δy/q, −Δx/q, −1]]"
-    )
+
+def _jacobian_variants() -> list[Variant]:
+    """The catalogue of :func:`range_bearing_jacobian`: each known mistake as a wrong version, with its hint."""
     BEARING = (
         "The bearing row is the derivative of atan2(Δy, Δx): ∂φ/∂x = Δy/q and ∂φ/∂y = −Δx/q (a robot that moves "
         "up sees the landmark turn clockwise). Work it out from d atan(t)/dt = 1/(1 + t²)."
     )
-    NUMERIC = (
-        "kf.numeric_jacobian is the tool that checks a Jacobian; the exercise asks for the Jacobian itself: derive "
-        "each entry of H by hand from h and write the formula."
-    )
-    variants = [
+    return [
         _jacobian_variant("bearing_row_sign", BEARING, bearing_sign=True),
         _jacobian_variant("bearing_row_sign", BEARING + " And ∂φ/∂θ = −1.", bearing_sign="row"),
         _jacobian_variant(
@@ -306,14 +293,35 @@ def range_bearing_jacobian(student_fn, seed: int = 0) -> CheckResult:
         _jacobian_variant("dx_dy_swapped", BEARING, swap_in_bearing_row=True),
         Variant("numeric_not_derived", _numeric_jacobian, NUMERIC),
     ]
+
+
+def range_bearing_jacobian(student_fn, seed: int = 0) -> CheckResult:
+    """Check your ``range_bearing_jacobian(state, landmark)`` against :func:`kfcourse.range_bearing_jacobian`.
+
+    The first case is chapter 7's worked example.  The exercise asks for H derived by hand: a
+    Jacobian differentiated numerically (``kf.numeric_jacobian`` or finite differences of your
+    own) agrees within the tolerance but only to about 1e-10, where the formula agrees to
+    rounding, and it is told so.  Introduced in chapter 7.
+
+    Parameters
+    ----------
+    student_fn : callable ``(state [x, y, theta], landmark [mx, my]) -> H (2, 3)``
+    seed : int
+        Seed of the random cases.
+
+    Returns
+    -------
+    CheckResult
+    """
+    cases = _sensor_cases(np.random.default_rng(seed))
     return run_check(
         "range_bearing_jacobian",
         student_fn,
         models.range_bearing_jacobian,
         cases,
-        variants,
+        _jacobian_variants(),
         ("H",),
-        where + " (check each entry against kf.numeric_jacobian while you derive it)",
+        JACOBIAN_WHERE + " (check each entry against kf.numeric_jacobian while you derive it)",
         approximation=(1e-12, "numeric_not_derived", NUMERIC),
         probes=JACOBIAN_PROBES,
     )
@@ -388,25 +396,7 @@ def _unicycle_variant(mistake: str, hint: str, **knobs) -> Variant:
     return Variant(mistake, lambda s, u, dt: _unicycle_with(s, u, dt, **knobs), hint)
 
 
-def unicycle(student_fn, seed: int = 0) -> CheckResult:
-    """Check your ``unicycle(state, u, dt)`` (one pose) against :func:`kfcourse.unicycle`.
-
-    The first case is chapter 8's example (θ = 0, V = 0.5 m/s, ω = 0, Δt = 1 s); one case
-    drives with ω = 1e-15, where chapter 8 shows the arc formula 2 cm off: a test for
-    exactly ω == 0 does not protect it.  Slow turns at ω = ±1e-5, ±0.001, ±0.01 and ±0.05, where
-    the arc formula is exact, catch a straight-line branch taken too far from 0.  Introduced in chapter 8.
-
-    Parameters
-    ----------
-    student_fn : callable ``(state [x, y, theta], u [V, omega], dt) -> next state [x, y, theta]``
-    seed : int
-        Seed of the random cases.
-
-    Returns
-    -------
-    CheckResult
-    """
-    rng = np.random.default_rng(seed)
+def _motion_cases(rng) -> list[Case]:
     origin = np.zeros(3)
     cases = [
         Case("chapter 8's worked example: θ = 0, V = 0.5, ω = 0, Δt = 1", state=origin, u=np.array([0.5, 0.0]), dt=1.0),
@@ -430,11 +420,17 @@ def unicycle(student_fn, seed: int = 0) -> CheckResult:
         u, dt = np.array([rng.uniform(-1, 2), rng.uniform(-1.5, 1.5)]), float(rng.uniform(0.05, 1.0))
         if abs(abs(models.unicycle(state, u, dt)[2]) - np.pi) > 1e-3:  # stay clear of the ±π seam
             cases.append(Case("random poses and controls", state=state, u=u, dt=dt))
-    where = (
-        "chapter 8, the unicycle model: x' = x + V/ω (sin(θ + ωΔt) − sin θ), y' = y + V/ω (cos θ − cos(θ + ωΔt)), "
-        "θ' = θ + ωΔt wrapped into (−π, π]; for ω at or near 0 the straight line x' = x + VΔt cos θ, "
-        "y' = y + VΔt sin θ"
-    )
+    return cases
+
+
+MOTION_WHERE = (
+    "chapter 8, the unicycle model: x' = x + V/ω (sin(θ + ωΔt) − sin θ), y' = y + V/ω (cos θ − cos(θ + ωΔt)), "
+    "θ' = θ + ωΔt wrapped into (−π, π]; for ω at or near 0 the straight line x' = x + VΔt cos θ, "
+    "y' = y + VΔt sin θ"
+)
+
+
+def _motion_variants() -> list[Variant]:
     LIMIT = "At ω = 0, V/ω is a division by zero: handle ω = 0 (or |ω| tiny) with the straight-line limit."
     TINY = (
         "Near ω = 0 the arc formula loses its digits (chapter 8 shows it 2 cm off at ω = 1e-15): drive the straight "
@@ -445,7 +441,7 @@ def unicycle(student_fn, seed: int = 0) -> CheckResult:
         "Only |ω| below about 1e-6 needs the straight line: at ω = 1e-3 the arc formula is still exact to about "
         "1e-13 m, and the robot already turns (2 m along the arc, it ends 1 mm to the side of the straight line)."
     )
-    variants = [
+    return [
         _unicycle_variant("exact_zero_test", TINY, limit=0.0),
         _unicycle_variant("exact_zero_test", TINY, limit=0.0, sin=math.sin, cos=math.cos),
         *(_unicycle_variant("straight_too_wide", WIDE, limit=limit) for limit in (1e-4, 1e-3, 1e-2, 5e-2, 1e-1)),
@@ -487,14 +483,35 @@ def unicycle(student_fn, seed: int = 0) -> CheckResult:
             no_dt_in_distance=True,
         ),
     ]
+
+
+def unicycle(student_fn, seed: int = 0) -> CheckResult:
+    """Check your ``unicycle(state, u, dt)`` (one pose) against :func:`kfcourse.unicycle`.
+
+    The first case is chapter 8's example (θ = 0, V = 0.5 m/s, ω = 0, Δt = 1 s); one case
+    drives with ω = 1e-15, where chapter 8 shows the arc formula 2 cm off: a test for
+    exactly ω == 0 does not protect it.  Slow turns at ω = ±1e-5, ±0.001, ±0.01 and ±0.05, where
+    the arc formula is exact, catch a straight-line branch taken too far from 0.  Introduced in chapter 8.
+
+    Parameters
+    ----------
+    student_fn : callable ``(state [x, y, theta], u [V, omega], dt) -> next state [x, y, theta]``
+    seed : int
+        Seed of the random cases.
+
+    Returns
+    -------
+    CheckResult
+    """
+    cases = _motion_cases(np.random.default_rng(seed))
     return run_check(
         "unicycle",
         student_fn,
         models.unicycle,
         cases,
-        variants,
+        _motion_variants(),
         ("state",),
-        where,
+        MOTION_WHERE,
         steps=MOTION_STEPS,
         probes=MOTION_PROBES,
         invariants=(angle_in_range("state", 2, "heading θ'"),),

@@ -94,25 +94,8 @@ SIGMA_PROBES = (
 )
 
 
-def sigma_points(student_fn, seed: int = 0) -> CheckResult:
-    """Check your ``sigma_points(mu, Sig, lam)`` against :func:`kfcourse.sigma_points`.
-
-    Points are rows: ``chi[0] = mu``, ``chi[i] = mu + L[:, i-1]``, ``chi[n+i] = mu - L[:, i-1]``
-    with ``L`` the lower Cholesky factor of ``(n + lam) Sig``; ``wc`` equals ``wm``.  The same
-    points in another order (each with its weights) pass too.  The first case is chapter 9's
-    worked example.  Introduced in chapter 9.
-
-    Parameters
-    ----------
-    student_fn : callable ``(mu (n,), Sig (n, n), lam) -> (chi (2n+1, n), wm (2n+1,), wc (2n+1,))``
-    seed : int
-        Seed of the random cases.
-
-    Returns
-    -------
-    CheckResult
-    """
-    rng = np.random.default_rng(seed)
+def _sigma_cases(rng) -> list[Case]:
+    """The cases of :func:`sigma_points`: chapter 9's worked example, the edge cases, then seeded random ones."""
     cases = [
         Case(
             "chapter 9's worked example: n = 1, μ = 2, σ² = 1, λ = 0, weights 0, ½, ½",
@@ -130,16 +113,23 @@ def sigma_points(student_fn, seed: int = 0) -> CheckResult:
         cases.append(
             Case(f"random: n = {n}, λ = {lam:.2f}", mu=rng.normal(size=n), Sig=random_covariance(rng, n), lam=lam)
         )
-    where = (
-        "chapter 9, sigma points: L Lᵀ = (n + λ)Σ with L = np.linalg.cholesky((n + λ) Σ); χ₀ = μ, "
-        f"χᵢ = μ + (column i of L), χₙ₊ᵢ = μ − (column i of L); {CH9_WEIGHTS}"
-    )
+    return cases
+
+
+SIGMA_WHERE = (
+    "chapter 9, sigma points: L Lᵀ = (n + λ)Σ with L = np.linalg.cholesky((n + λ) Σ); χ₀ = μ, "
+    f"χᵢ = μ + (column i of L), χₙ₊ᵢ = μ − (column i of L); {CH9_WEIGHTS}"
+)
+
+
+def _sigma_variants() -> list[Variant]:
+    """The catalogue of :func:`sigma_points`: each known mistake as a wrong version, with its hint."""
     SCALE = "The points sit √(n + λ) standard deviations out: take the square root of (n + λ)Σ, the whole of it."
 
     def variant(mistake: str, hint: str, **knobs) -> Variant:
         return Variant(mistake, lambda mu, Sig, lam: _sigma_points_with(mu, Sig, lam, **knobs), hint)
 
-    variants = [
+    return [
         variant(
             "wrong_weights",
             "Each of the 2n outer points weighs 1/(2(n + λ)), so all 2n + 1 weights sum to 1.",
@@ -177,14 +167,35 @@ def sigma_points(student_fn, seed: int = 0) -> CheckResult:
             root="entries",
         ),
     ]
+
+
+def sigma_points(student_fn, seed: int = 0) -> CheckResult:
+    """Check your ``sigma_points(mu, Sig, lam)`` against :func:`kfcourse.sigma_points`.
+
+    Points are rows: ``chi[0] = mu``, ``chi[i] = mu + L[:, i-1]``, ``chi[n+i] = mu - L[:, i-1]``
+    with ``L`` the lower Cholesky factor of ``(n + lam) Sig``; ``wc`` equals ``wm``.  The same
+    points in another order (each with its weights) pass too.  The first case is chapter 9's
+    worked example.  Introduced in chapter 9.
+
+    Parameters
+    ----------
+    student_fn : callable ``(mu (n,), Sig (n, n), lam) -> (chi (2n+1, n), wm (2n+1,), wc (2n+1,))``
+    seed : int
+        Seed of the random cases.
+
+    Returns
+    -------
+    CheckResult
+    """
+    cases = _sigma_cases(np.random.default_rng(seed))
     return run_check(
         "sigma_points",
         student_fn,
         filters.sigma_points,
         cases,
-        variants,
+        _sigma_variants(),
         ("chi", "wm", "wc"),
-        where,
+        SIGMA_WHERE,
         pair=_pair_points,
         steps=SIGMA_STEPS,
         probes=SIGMA_PROBES,
@@ -259,26 +270,8 @@ UT_PROBES = (
 )
 
 
-def unscented_transform(student_fn, seed: int = 0) -> CheckResult:
-    """Check your ``unscented_transform(mu, Sig, f, lam)`` against :func:`kfcourse.unscented_transform`.
-
-    ``f`` takes the sigma points one a row, ``(2n+1, n)``, and returns one row per point,
-    ``(2n+1, k)``, as for ``kf.unscented_transform``; it also takes a single point ``(n,)``.
-    The weights are those of :func:`kfcourse.sigma_points` (``wc`` equals ``wm``).  The first
-    case is chapter 9's worked example, x ~ N(2, 1) through y = x² with λ = 0: (5, 16).
-    Introduced in chapter 9.
-
-    Parameters
-    ----------
-    student_fn : callable ``(mu (n,), Sig (n, n), f, lam) -> (mu_y (k,), Sig_y (k, k))``
-    seed : int
-        Seed of the random cases.
-
-    Returns
-    -------
-    CheckResult
-    """
-    rng = np.random.default_rng(seed)
+def _ut_cases(rng) -> list[Case]:
+    """The cases of :func:`unscented_transform`: chapter 9's worked example, the edge cases, then seeded random ones."""
     cases = [
         Case(
             "chapter 9's worked example: x ~ N(2, 1), y = x², λ = 0",
@@ -308,10 +301,17 @@ def unscented_transform(student_fn, seed: int = 0) -> CheckResult:
                 lam=lam,
             )
         )
-    where = (
-        "chapter 9, the unscented transform: the sigma points χᵢ and weights wᵢ of kf.sigma_points "
-        f"({CH9_WEIGHTS}), Yᵢ = f(χᵢ), μ_y = Σ wᵢ Yᵢ, Σ_y = Σ wᵢ (Yᵢ − μ_y)(Yᵢ − μ_y)ᵀ"
-    )
+    return cases
+
+
+UT_WHERE = (
+    "chapter 9, the unscented transform: the sigma points χᵢ and weights wᵢ of kf.sigma_points "
+    f"({CH9_WEIGHTS}), Yᵢ = f(χᵢ), μ_y = Σ wᵢ Yᵢ, Σ_y = Σ wᵢ (Yᵢ − μ_y)(Yᵢ − μ_y)ᵀ"
+)
+
+
+def _ut_variants() -> list[Variant]:
+    """The catalogue of :func:`unscented_transform`: each known mistake as a wrong version, with its hint."""
     PLAIN = "The transformed points are averaged with the sigma-point weights, w₀ = λ/(n + λ), wᵢ = 1/(2(n + λ))."
     OUTER = (
         "Each point adds the outer product (Yᵢ − μ_y)(Yᵢ − μ_y)ᵀ, a k x k matrix: np.outer(d, d), "
@@ -321,7 +321,7 @@ def unscented_transform(student_fn, seed: int = 0) -> CheckResult:
     def variant(mistake: str, hint: str, **knobs) -> Variant:
         return Variant(mistake, lambda mu, Sig, f, lam: _unscented_with(mu, Sig, f, lam, **knobs), hint)
 
-    variants = [
+    return [
         variant(
             "f_not_applied", "Push every sigma point through f first: Yᵢ = f(χᵢ), then average the Yᵢ.", points="chi"
         ),
@@ -358,14 +358,36 @@ def unscented_transform(student_fn, seed: int = 0) -> CheckResult:
         ),
         variant("missing_scale", "(n + λ) goes under the square root: L Lᵀ = (n + λ)Σ.", scale="out"),
     ]
+
+
+def unscented_transform(student_fn, seed: int = 0) -> CheckResult:
+    """Check your ``unscented_transform(mu, Sig, f, lam)`` against :func:`kfcourse.unscented_transform`.
+
+    ``f`` takes the sigma points one a row, ``(2n+1, n)``, and returns one row per point,
+    ``(2n+1, k)``, as for ``kf.unscented_transform``; it also takes a single point ``(n,)``.
+    The weights are those of :func:`kfcourse.sigma_points` (``wc`` equals ``wm``).  The first
+    case is chapter 9's worked example, x ~ N(2, 1) through y = x² with λ = 0: (5, 16).
+    Introduced in chapter 9.
+
+    Parameters
+    ----------
+    student_fn : callable ``(mu (n,), Sig (n, n), f, lam) -> (mu_y (k,), Sig_y (k, k))``
+    seed : int
+        Seed of the random cases.
+
+    Returns
+    -------
+    CheckResult
+    """
+    cases = _ut_cases(np.random.default_rng(seed))
     return run_check(
         "unscented_transform",
         student_fn,
         filters.unscented_transform,
         cases,
-        variants,
+        _ut_variants(),
         ("mu_y", "Sig_y"),
-        where,
+        UT_WHERE,
         steps=UT_STEPS,
         probes=UT_PROBES,
         invariants=(is_covariance("Sig_y", psd=False),),
