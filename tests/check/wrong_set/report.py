@@ -3,10 +3,13 @@
     .venv/bin/python -m tests.check.wrong_set.report [checker ...] [--all]
 
 For each wrong solution: caught (✘), named (the catalogue's key, when the verdict names one), and
-pointed: the verdict's own words (not the closing "Compare your code with ..." or "See ...", which name
-the exercise's equations whatever the mistake) mention the equation the solution breaks or an input
-whose part it gets wrong.  Right solutions must pass.  Prints one line per solution that is not both
-caught and pointed (every one with --all), then a summary per checker.
+"mentions": the verdict names a mistake, or its own words (not the closing "Compare your code with ..."
+or "See ...", which name the exercise's equations whatever the mistake) mention the equation the
+solution breaks or an input whose part it gets wrong.  That is a floor, counted by machine: whether a
+verdict points at the mistake is a reader's judgement (docs/development.md, "The checkers", gives the
+last reader's count), since many solutions name neither an equation nor an input.  Right solutions must
+pass.  Prints one line per wrong solution whose verdict mentions neither (every one with --all), then a
+summary per checker.
 """
 
 from __future__ import annotations
@@ -50,7 +53,7 @@ def verdict(solution: Solution) -> dict:
     return {
         "caught": not result.passed,
         "named": result.mistake,
-        "pointed": bool(result.mistake) or at_equation or at_input,
+        "mentions": bool(result.mistake) or at_equation or at_input,
         "result": result,
     }
 
@@ -77,23 +80,23 @@ def main(argv=None) -> int:
         t["wrong"] += 1
         t["caught"] += v["caught"]
         t["named"] += bool(v["named"])
-        t["pointed"] += v["caught"] and v["pointed"]
-        if args.all or not (v["caught"] and v["pointed"]):
+        t["mentions"] += v["caught"] and v["mentions"]
+        if args.all or not (v["caught"] and v["mentions"]):
             mark = "✘" if v["caught"] else "MISSED"
             print(
                 f"{mark:6s} {s.checker:22s} {s.fn.__name__:40s} {s.equation:8s} {','.join(s.inputs):12s} "
-                f"named={v['named']} pointed={v['pointed']}"
+                f"named={v['named']} mentions={v['mentions']}"
             )
             print(f"       meant: {s.what}")
             print(f"       said:  {_own_words(v['result'].hint)[:600]}")
-    print(f"\n{'checker':24s} wrong caught pointed named | right passed")
+    print(f"\n{'checker':24s} wrong caught mentions named | right passed")
     for checker, t in sorted(totals.items()):
-        counts = f"{t['wrong']:5d} {t['caught']:6d} {t['pointed']:7d} {t['named']:5d}"
+        counts = f"{t['wrong']:5d} {t['caught']:6d} {t['mentions']:8d} {t['named']:5d}"
         print(f"{checker:24s} {counts} | {t['right']:5d} {t['right passed']:6d}")
     w = sum(t["wrong"] for t in totals.values())
     print(
         f"{'all':24s} {w:5d} {sum(t['caught'] for t in totals.values()):6d} "
-        f"{sum(t['pointed'] for t in totals.values()):7d} {sum(t['named'] for t in totals.values()):5d}"
+        f"{sum(t['mentions'] for t in totals.values()):8d} {sum(t['named'] for t in totals.values()):5d}"
     )
     return 0
 
