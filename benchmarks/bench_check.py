@@ -30,6 +30,8 @@ REFERENCES = {  # the package's function each checker compares with, where it is
 
 def reference_of(name: str):
     return REFERENCES.get(name) or getattr(kf, name)
+
+
 ROUNDS = 5  # timed rounds after the first call
 TARGET = 1000.0  # ms
 
