@@ -534,8 +534,9 @@ def _broken(student_fn, reference, cases, number, invariants, returns, pair) -> 
     on every case where it is wrong, holds the right numbers in other places (said with case ``number``'s)."""
     said, answers = [], []
     for case in cases:
-        right = _parts(case.call(reference), returns)
-        outcome = _answers(student_fn, dict(case.inputs), case.call(reference), pair)
+        expected = case.call(reference)
+        right = _parts(expected, returns)
+        outcome = _answers(student_fn, dict(case.inputs), expected, pair)
         mine = _parts(outcome[1], returns) if outcome[0] == "returned" else None
         answers.append((case, right, None if mine is None or any(_as_array(p) is None for p in mine) else mine))
     for invariant in invariants:
