@@ -471,21 +471,17 @@ def _diagnosis(check: _Check, number: int) -> list[str]:
     (:class:`Probe`), and an output that follows an input the right one ignores, or ignores one the right
     one follows, is named with the equation where that input enters.  No sentence guesses at a mistake:
     each says what the function did.  An answer that is not finite (NaN, inf) tells nothing of the kind.
+    The answers on the cases are computed once and shared; the exchanges, the steps and the probes run the
+    functions on inputs of their own.
     """
-    student_fn, reference, cases, returns, pair = (
-        check.student_fn,
-        check.reference,
-        check.cases,
-        check.returns,
-        check.pair,
-    )
-    said = _exchanged(check) + _broken(student_fn, reference, cases, number, check.invariants, returns, pair)
+    answers = [_outcomes(check, case.inputs) for case in check.cases]  # (the right outcome, the student's)
+    said = _exchanged(check) + _broken(check, number, answers)
     steps = []  # each step with the outputs wrong on its inputs ([] when right on every case)
     for step in check.steps:
-        wrong = [_wrong_parts(student_fn, reference, step.isolate(dict(case.inputs)), returns, pair) for case in cases]
+        wrong = [_wrong_parts(_outcomes(check, step.isolate(dict(case.inputs))), check.returns) for case in check.cases]
         wrong = [w for w in wrong if w is not None]  # None: the right function refuses those inputs
         if wrong:
-            steps.append((step, [name for name in (*returns, "raises") if any(name in w for w in wrong)]))
+            steps.append((step, [name for name in (*check.returns, "raises") if any(name in w for w in wrong)]))
     if len(steps) < 2 or not all(outputs for _, outputs in steps):  # every one of several wrong tells nothing apart
         for step, outputs in steps:
             there = (
@@ -496,13 +492,16 @@ def _diagnosis(check: _Check, number: int) -> list[str]:
             )
             said.append(f"with {step.inputs} the answer is {step.equations}{there}")
     if check.probes:
-        failing = [number] + [
-            k
-            for k in range(number + 1, len(cases))
-            if _wrong_parts(student_fn, reference, dict(cases[k].inputs), returns, pair)
-        ]
-        said += _probe_sentences(student_fn, reference, [cases[k] for k in failing[:3]], check.probes, returns, pair)
+        failing = [number] + [k for k in range(number + 1, len(answers)) if _wrong_parts(answers[k], check.returns)]
+        said += _probe_sentences(check, [(check.cases[k], answers[k]) for k in failing[:3]])
     return said
+
+
+def _outcomes(check: _Check, inputs: dict):
+    """The right function's outcome on ``inputs`` and the student's (put into the right one's order; None when the
+    right function refuses the inputs): outcomes of :func:`_quietly`, each function on a fresh copy."""
+    right = _quietly(check.reference, Case("", **inputs))
+    return right, None if right[0] == "raised" else _answers(check.student_fn, inputs, right[1], check.pair)
 
 
 def _exchanged(check: _Check) -> list[str]:
@@ -529,18 +528,18 @@ def _exchanged(check: _Check) -> list[str]:
     return said
 
 
-def _broken(student_fn, reference, cases, number, invariants, returns, pair) -> list[str]:
-    """The invariants the student's answers break, each on the first case where it does; and each output that,
-    on every case where it is wrong, holds the right numbers in other places (said with case ``number``'s)."""
-    said, answers = [], []
-    for case in cases:
-        expected = case.call(reference)
-        right = _parts(expected, returns)
-        outcome = _answers(student_fn, dict(case.inputs), expected, pair)
-        mine = _parts(outcome[1], returns) if outcome[0] == "returned" else None
-        answers.append((case, right, None if mine is None or any(_as_array(p) is None for p in mine) else mine))
-    for invariant in invariants:
-        for k, (case, _, mine) in enumerate(answers):
+def _broken(check: _Check, number: int, answers: list) -> list[str]:
+    """The invariants the student's answers (``answers``: each case's outcomes) break, each on the first case where
+    it does; and each output that, on every case where it is wrong, holds the right numbers in other places (said
+    with case ``number``'s)."""
+    returns, said, parts = check.returns, [], []  # parts: each case's right parts and the student's (None: none)
+    for right, mine in answers:
+        mine = _parts(mine[1], returns) if mine[0] == "returned" else None
+        parts.append(
+            (_parts(right[1], returns), None if mine is None or any(_as_array(p) is None for p in mine) else mine)
+        )
+    for invariant in check.invariants:
+        for k, (case, (_, mine)) in enumerate(zip(check.cases, parts, strict=True)):
             try:
                 broken = (
                     mine is not None
@@ -553,7 +552,7 @@ def _broken(student_fn, reference, cases, number, invariants, returns, pair) -> 
                 said.append(f"on case {k + 1} ({case.label}) {invariant.says}")
                 break
     for index, name in enumerate(returns):
-        wrong = [(_as_array(right[index]), _as_array(mine[index])) for _, right, mine in answers if mine is not None]
+        wrong = [(_as_array(right[index]), _as_array(mine[index])) for right, mine in parts if mine is not None]
         wrong = [(e, m) for e, m in wrong if not _close(e, m)]
         if wrong and all(
             e.shape == m.shape
@@ -561,25 +560,25 @@ def _broken(student_fn, reference, cases, number, invariants, returns, pair) -> 
             and np.allclose(np.sort(e, axis=None), np.sort(m, axis=None), rtol=RTOL, atol=ATOL)
             for e, m in wrong
         ):
-            _, right, mine = answers[number]
+            right, mine = parts[number]
             where = _wrong_entries(_as_array(mine[index]), _as_array(right[index])) if mine is not None else ""
             said.append(f"your {name} holds the right numbers, some in the wrong places{where}")
     return said
 
 
-def _wrong_parts(student_fn, reference, inputs: dict, returns, pair) -> list[str] | None:
-    """The outputs of the student's function that differ from the reference's on these inputs (["raises"] when it
-    raises and the reference does not; [] when it agrees), or None when the reference refuses the inputs."""
-    expected = _quietly(reference, Case("", **inputs))
-    if expected[0] == "raised":
+def _wrong_parts(outcomes, returns) -> list[str] | None:
+    """The outputs of the student's function that differ from the right one's (``outcomes``, from
+    :func:`_outcomes`): ["raises"] when it raises and the right one does not, [] when it agrees, None when the
+    right function refuses the inputs."""
+    right, mine = outcomes
+    if mine is None:
         return None
-    mine = _answers(student_fn, inputs, expected[1], pair)
     if mine[0] == "raised":
         return ["raises"]
     parts = _parts(mine[1], returns)
     if parts is None:
         return list(returns)
-    return [name for name, m, e in zip(returns, parts, _parts(expected[1], returns), strict=True) if not _close(m, e)]
+    return [name for name, m, e in zip(returns, parts, _parts(right[1], returns), strict=True) if not _close(m, e)]
 
 
 def _finite(parts) -> bool:
@@ -588,21 +587,22 @@ def _finite(parts) -> bool:
     return all(a is not None and bool(np.isfinite(a).all()) for a in arrays)
 
 
-def _probe_sentences(student_fn, reference, failing: list, probes, returns, pair) -> list[str]:
+def _probe_sentences(check: _Check, failing: list) -> list[str]:
     """For each input moved alone on the first failing case: the outputs whose following of it differs from the
     right ones'; then, when what is wrong changes with a few inputs only, the same on every failing case, those.
+    ``failing``: each failing case with its outcomes (:func:`_outcomes`).
 
     An answer that is the right one plus an error moves, when an input moves, by the right one's change
     plus the error's: the same amount exactly when the error does not depend on that input.  So the inputs
     under which the two answers move by different amounts are the ones what is wrong depends on."""
-    out, depends = [], []
-    for number, case in enumerate(failing):
-        moves = [_moved_alone(student_fn, reference, case, probe, returns, pair) for probe in probes]
+    probes, out, depends = check.probes, [], []
+    for number, (case, base) in enumerate(failing):
+        moves = [_moved_alone(check, case, base, probe) for probe in probes]
         if number == 0:
             for probe, parts in zip(probes, moves, strict=True):
                 if parts is None:
                     continue
-                for name, r0, r1, m0, m1 in zip(returns, *parts, strict=True):
+                for name, r0, r1, m0, m1 in zip(check.returns, *parts, strict=True):
                     follows, yours = not _close(r0, r1), not _close(m0, m1)
                     if follows and not yours:
                         out.append(
@@ -628,17 +628,15 @@ def _probe_sentences(student_fn, reference, failing: list, probes, returns, pair
     ]
 
 
-def _moved_alone(student_fn, reference, case, probe, returns, pair):
-    """The right answer and the student's, before and after ``probe`` moves its input on ``case``: four lists of
-    parts, or None when a function raises there, an answer has another number of parts, or one is not finite."""
-    right0 = case.call(reference)
-    mine0 = _answers(student_fn, dict(case.inputs), right0, pair)
-    moved = {**case.inputs, probe.name: probe.move(copy.deepcopy(case.inputs[probe.name]))}
-    right1 = _quietly(reference, Case("", **moved))
-    mine1 = _answers(student_fn, moved, right1[1], pair)
-    if right1[0] == "raised" or mine0[0] == "raised" or mine1[0] == "raised":
+def _moved_alone(check: _Check, case: Case, base, probe: Probe):
+    """The right answer and the student's on ``case`` (``base``: their outcomes there) and after ``probe`` moves its
+    input: four lists of parts, or None when a function raises, an answer has another number of parts, or one is
+    not finite."""
+    (right0, mine0), moved = base, {**case.inputs, probe.name: probe.move(copy.deepcopy(case.inputs[probe.name]))}
+    right1, mine1 = _outcomes(check, moved)
+    if mine1 is None or mine0[0] == "raised" or mine1[0] == "raised":
         return None
-    parts = [_parts(x, returns) for x in (right0, right1[1], mine0[1], mine1[1])]
+    parts = [_parts(x[1], check.returns) for x in (right0, right1, mine0, mine1)]
     if any(p is None or not _finite(p) for p in parts):
         return None
     return parts
