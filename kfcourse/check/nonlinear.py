@@ -72,18 +72,20 @@ JACOBIAN_PROBES = (
 )
 
 
-def _heading(theta: float):
-    """A step's isolation: the robot's heading set to ``theta``."""
+def _with_entry(name: str, index: int, value: float):
+    """A step's isolation: entry ``index`` of the input ``name`` set to ``value`` (the heading θ = 0, say)."""
 
     def isolate(inputs: dict) -> dict:
-        state = np.array(inputs["state"], dtype=float)
-        state[2] = theta
-        return {**inputs, "state": state}
+        a = np.array(inputs[name], dtype=float)
+        a[index] = value
+        return {**inputs, name: a}
 
     return isolate
 
 
-SENSOR_STEPS = (Step("the heading θ = 0", "r = √q and the landmark's direction atan2(Δy, Δx) alone", _heading(0.0)),)
+SENSOR_STEPS = (
+    Step("the heading θ = 0", "r = √q and the landmark's direction atan2(Δy, Δx) alone", _with_entry("state", 2, 0.0)),
+)
 
 
 # ------------------------------------------------------------------ range_bearing
@@ -328,22 +330,10 @@ def range_bearing_jacobian(student_fn, seed: int = 0) -> CheckResult:
 
 
 # ----------------------------------------------------------------------- unicycle
-def _control(V=None, omega=None):
-    """A step's isolation: the control's speed V or turn rate ω set."""
-
-    def isolate(inputs: dict) -> dict:
-        u = np.array(inputs["u"], dtype=float)
-        u[0] = u[0] if V is None else V
-        u[1] = u[1] if omega is None else omega
-        return {**inputs, "u": u}
-
-    return isolate
-
-
 # With ω = 0 the robot drives the straight line alone, with V = 0 it turns on the spot alone.
 MOTION_STEPS = (
-    Step("ω = 0", "the straight line x' = x + VΔt cos θ, y' = y + VΔt sin θ, θ' = θ", _control(omega=0.0)),
-    Step("V = 0", "the turn on the spot: x' = x, y' = y, θ' = θ + ωΔt wrapped", _control(V=0.0)),
+    Step("ω = 0", "the straight line x' = x + VΔt cos θ, y' = y + VΔt sin θ, θ' = θ", _with_entry("u", 1, 0.0)),
+    Step("V = 0", "the turn on the spot: x' = x, y' = y, θ' = θ + ωΔt wrapped", _with_entry("u", 0, 0.0)),
 )
 ARC = "x' and y' along the arc (or the straight line), and θ' = θ + ωΔt"
 MOTION_PROBES = (
@@ -397,6 +387,8 @@ def _unicycle_variant(mistake: str, hint: str, **knobs) -> Variant:
 
 
 def _motion_cases(rng) -> list[Case]:
+    """The cases of :func:`unicycle`: chapter 8's worked example, the edge cases and the slow turns, then seeded
+    random ones."""
     origin = np.zeros(3)
     cases = [
         Case("chapter 8's worked example: θ = 0, V = 0.5, ω = 0, Δt = 1", state=origin, u=np.array([0.5, 0.0]), dt=1.0),
