@@ -198,6 +198,17 @@ def sums_to_one(name: str, why: str) -> Invariant:
     )
 
 
+def non_negative(name: str, what: str, index: int | None = None, label: str = "") -> Invariant:
+    """``name`` (its entry ``index``, when given; ``label``: what the verdict calls it) is not negative, as ``what``
+    ("a variance") never is."""
+
+    def holds(inputs, parts) -> bool:
+        a = np.asarray(parts[name], dtype=float)
+        return bool(np.all((a if index is None else a.reshape(-1)[index]) >= 0))
+
+    return Invariant(holds, f"your {label or name} is negative, and {what} never is")
+
+
 def is_covariance(name: str, psd: bool = True) -> Invariant:
     """``name`` is symmetric and, unless ``psd`` is False, positive semi-definite, up to rounding.  (An unscented
     transform with λ < 0 has a negative weight w₀, and its covariance can lose semi-definiteness.)"""

@@ -11,7 +11,7 @@ import math
 import numpy as np
 
 from .. import filters, models, sim
-from ._core import Case, CheckResult, Invariant, Probe, Step, Variant, is_covariance, random_covariance, run_check
+from ._core import Case, CheckResult, Probe, Step, Variant, is_covariance, non_negative, random_covariance, run_check
 
 
 def _function(student_fn, name: str) -> None:
@@ -123,11 +123,7 @@ def drift_sigma(student_fn, seed: int = 0) -> CheckResult:
         DRIFT_WHERE,
         steps=DRIFT_STEPS,
         probes=DRIFT_PROBES,
-        invariants=(
-            Invariant(
-                lambda i, p: np.all(np.asarray(p["sigma"]) >= 0), "your sigma is negative, and a spread never is"
-            ),
-        ),
+        invariants=(non_negative("sigma", "a spread"),),
     )
 
 

@@ -8,7 +8,18 @@ from __future__ import annotations
 import numpy as np
 
 from .. import filters
-from ._core import Case, CheckResult, Invariant, Probe, Step, Variant, is_covariance, random_covariance, run_check
+from ._core import (
+    Case,
+    CheckResult,
+    Invariant,
+    Probe,
+    Step,
+    Variant,
+    is_covariance,
+    non_negative,
+    random_covariance,
+    run_check,
+)
 
 
 # --------------------------------------------------------------------- kf_1d_step
@@ -194,7 +205,7 @@ def kf_1d_step(student_fn, seed: int = 0) -> CheckResult:
         KF_1D_WHERE,
         steps=KF_1D_STEPS,
         probes=KF_1D_PROBES,
-        invariants=(Invariant(lambda i, p: p["var"] >= 0, "your var is negative, and a variance never is"),),
+        invariants=(non_negative("var", "a variance"),),
     )
 
 

@@ -7,7 +7,7 @@ import math
 import numpy as np
 
 from .. import models
-from ._core import Case, CheckResult, Invariant, Probe, Step, Variant, angle_in_range, run_check
+from ._core import Case, CheckResult, Probe, Step, Variant, angle_in_range, non_negative, run_check
 
 ROBOT = np.array([1.0, 2.0, 0.0])  # chapter 7's worked example: robot (1, 2, 0) ...
 LANDMARK = np.array([4.0, 6.0])  # ... and landmark (4, 6)
@@ -192,9 +192,7 @@ def range_bearing(student_fn, seed: int = 0) -> CheckResult:
         steps=SENSOR_STEPS,
         probes=SENSOR_PROBES,
         invariants=(
-            Invariant(
-                lambda i, p: np.asarray(p["z"]).reshape(-1)[0] >= 0, "your range r is negative: a distance never is"
-            ),
+            non_negative("z", "a distance", index=0, label="range r"),
             angle_in_range("z", 1, "bearing φ"),
         ),
     )
