@@ -202,7 +202,8 @@ def _student_step(mu, Sig, u, z, landmarks, dt, M, Q, gate, **bug):
             nu[1] = kf.wrap_angle(nu[1])
         S = H @ Sig @ H.T + (0 if bug.get("no_Q") in ("both", "gate") else Q)
         d2 = nu @ np.linalg.inv(S) @ nu
-        refused = {"d2": d2 > gate**2, "d2 vs gate": d2 > gate, "none": False}[bug.get("gate_test", "d2")]
+        tests = {"d2": d2 > gate**2, "d2 vs gate": d2 > gate, "S not inverted": nu @ S @ nu > gate**2, "none": False}
+        refused = tests[bug.get("gate_test", "d2")]
         if refused:
             continue
         S = H @ Sig @ H.T + (0 if bug.get("no_Q") in ("both", "update") else Q)
@@ -298,6 +299,10 @@ def localization_update_without_residual(mu, Sig, u, z, landmarks, dt, M, Q, gat
 
 def localization_d2_vs_gate(*args):
     return _student_step(*args, gate_test="d2 vs gate")
+
+
+def localization_gate_with_S(*args):
+    return _student_step(*args, gate_test="S not inverted")  # wrong: the gate takes nu^T S nu, not nu^T S^-1 nu
 
 
 def localization_d_vs_gate2(mu, Sig, u, z, landmarks, dt, M, Q, gate):

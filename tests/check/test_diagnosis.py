@@ -12,6 +12,7 @@ import numpy as np
 import pytest
 
 import kfcourse as kf
+from tests.check import new_answers
 
 
 def _unnamed(result):
@@ -204,27 +205,6 @@ def test_sigma_points_right_on_one_axis_and_a_diagonal_but_not_with_correlation(
 
 
 def test_chapter_10s_step_right_without_its_gate():
-    def gate_with_S(mu, Sig, u, z, landmarks, dt, M, Q, gate):
-        W = kf.unicycle_control_jacobian(mu, u, dt)
-        g, G = (lambda x, c: kf.unicycle(x, c, dt)), (lambda x, c: kf.unicycle_jacobian(x, c, dt))
-        mu, Sig = kf.ekf_predict(mu, Sig, u, g, G, W @ M @ W.T)
-        used = np.zeros(len(z), dtype=bool)
-        for j, (zj, m) in enumerate(zip(np.reshape(z, (-1, 2)), np.reshape(landmarks, (-1, 2)), strict=True)):
-            H = kf.range_bearing_jacobian(mu, m)
-            nu = kf.models.range_bearing_residual(zj, kf.range_bearing(mu, m))
-            if nu @ (H @ Sig @ H.T + Q) @ nu <= gate**2:  # S, not its inverse
-                mu, Sig = kf.ekf_update(
-                    mu,
-                    Sig,
-                    zj,
-                    lambda x, m=m: kf.range_bearing(x, m),
-                    lambda x, m=m: kf.range_bearing_jacobian(x, m),
-                    Q,
-                    residual=kf.models.range_bearing_residual,
-                )
-                mu[2], used[j] = kf.wrap_angle(mu[2]), True
-        return mu, Sig, used
-
-    hint = _unnamed(kf.check.localization_step(gate_with_S))
+    hint = _unnamed(kf.check.localization_step(new_answers.localization_gate_with_S))
     assert "With gate = ∞ (no reading refused) the answer is (1), (2), (4) and (5), without the gate (3)" in hint
     assert "without the gate (3), and yours is right there" in hint
