@@ -72,8 +72,6 @@ def _pair_points(expected, got):
     return (chi[order], wm[order], wc[order]) if np.allclose(mine[order], theirs, rtol=RTOL, atol=ATOL) else got
 
 
-# Each input moved alone (run_check's diagnosis): μ moves every point and no weight; Σ spreads the points and
-# leaves the weights; λ changes both.
 # One coordinate alone (n = 1, no correlation to follow) and a diagonal Σ (its root the standard deviations).
 SIGMA_STEPS = (
     Step(
@@ -87,6 +85,8 @@ SIGMA_STEPS = (
         lambda i: {**i, "Sig": np.diag(np.diag(i["Sig"]))},
     ),
 )
+# Each input moved alone (run_check's diagnosis): μ moves every point and no weight; Σ spreads the points and
+# leaves the weights; λ changes both.
 SIGMA_PROBES = (
     Probe("mu", lambda x: x + 1.0, "every point, χ₀ = μ and χᵢ = μ ± Lᵢ, and no weight"),
     Probe("Sig", lambda x: 2.0 * x, "the spread L of the points (L Lᵀ = (n + λ)Σ), and no weight"),
