@@ -28,7 +28,6 @@ from .records import Record, text_table
 KIDNAP = 60  # the step of chapter 10's kidnap, about half a lap
 GATE = 4.0  # the EKF's and UKF's validation gate on the kidnapped lap, as in chapter 10's capstone
 INJECTION = 0.05  # the share of particles injected after each resampling on the kidnapped lap
-TIMINGS = 3  # a filter's step time is the fastest of this many timed laps
 
 # The lesson's closing table: filter, what it handles, when to use it.
 LESSON_ROWS = (
@@ -91,8 +90,8 @@ class FamilyTable(Record):
             "start spread over the whole map.  After the kidnap the EKF and UKF gate their readings at",
             f"{self.gate:g}σ, and the particle filter replaces a share {self.injection:g} of its particles by random",
             "poses after each resampling.  The EKF and UKF start at the true pose: no global start (—).",
-            f"ms/step: one step of the filter alone on this machine, world and record left out (seed {self.seeds[0]}'s",
-            f"normal lap, the fastest of {TIMINGS}).",
+            "ms/step: one step of the filter alone on this machine, world and record left out (one timed lap: seed",
+            f"{self.seeds[0]}'s normal lap).",
             "The Bayes filter is the theory the others approximate; the KF needs linear models, and this loop is not.",
         ]
         return text_table(header, rows) + "\n\n" + "\n".join(notes)
@@ -143,14 +142,11 @@ def _score(name: str, drive, seeds, kidnapped: dict, global_start: dict | None, 
     )
 
 
-def _fastest(run, repeats: int = TIMINGS) -> float:
-    """The shortest wall time of ``repeats`` calls of ``run()`` (s): the least disturbed by other work."""
-    seconds = []
-    for _ in range(repeats):
-        start = time.perf_counter()
-        run()
-        seconds.append(time.perf_counter() - start)
-    return min(seconds)
+def _seconds(run) -> float:
+    """The wall time of one call of ``run()`` (s)."""
+    start = time.perf_counter()
+    run()
+    return time.perf_counter() - start
 
 
 def _kalman_ms(kind: str, seed: int) -> float:
@@ -159,7 +155,7 @@ def _kalman_ms(kind: str, seed: int) -> float:
     M = np.diag([V_STD, OMEGA_STD]) ** 2  # honest noise, as landmark_loop's
     Q = np.diag([RANGE_STD, BEARING_STD]) ** 2
     predict, update = loop_filter(kind, world.dt, M, Q)
-    return 1000.0 * _fastest(lambda: localize(world, predict, update, SIG0)) / len(world.t)
+    return 1000.0 * _seconds(lambda: localize(world, predict, update, SIG0)) / len(world.t)
 
 
 def _particle_ms(N: int, seed: int) -> float:
@@ -167,8 +163,8 @@ def _particle_ms(N: int, seed: int) -> float:
 
     What is left besides the filter's steps is the record (the cloud kept at every step, the NEES
     at the end), under 1 % of the lap."""
-    lap = _fastest(lambda: particle_loop(seed, n_particles=N))
-    world = _fastest(lambda: loop_world(seed))
+    lap = _seconds(lambda: particle_loop(seed, n_particles=N))
+    world = _seconds(lambda: loop_world(seed))
     return 1000.0 * (lap - world) / len(loop_world(seed).t)
 
 
@@ -216,13 +212,13 @@ def family_table(seeds=range(20), particle_counts=(200, 2000), runs=()) -> Famil
     map (the EKF and UKF start at the true pose).  A lap that ends localized keeps its
     error under 0.5 m over its last quarter (:func:`~kfcourse.sim.localized`).
     The cost per step is the wall time of one step of the filter alone (the world's simulation
-    and the record left out), timed over the first seed's normal lap, the fastest of
-    :data:`TIMINGS`; it is a figure of this machine, not a property of the filter.
+    and the record left out), timed over one more run of the first seed's normal lap; it is a figure of
+    this machine, not a property of the filter.
 
     Laps of the particle filter already run, with the very settings a row needs (say earlier in a
     chapter), may be passed in ``runs``: each is used instead of running that lap again.
 
-    Introduced in chapter 11.  Twenty seeds and two particle counts take about 20 s on a 2-core machine,
+    Introduced in chapter 11.  Twenty seeds and two particle counts take about 25 s on a 2-core machine,
     less for each lap passed in ``runs``.
 
     Parameters

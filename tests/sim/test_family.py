@@ -76,7 +76,7 @@ def test_the_table_puts_the_numbers_beside_the_lessons_words(family):
     pf = family.scores["PF 2000"]
     assert f"{int(pf.found.sum())}/20" in lines[7] and f"{int(pf.localized.sum())}/20" in lines[7]
     assert "share 0.05" in text and "step 60" in text and "Seeds 0-19" in text
-    assert "one step of the filter alone" in text and "world and record left out (seed 0's" in text
+    assert "one step of the filter alone" in text and "world and record left out (one timed lap: seed" in text
 
 
 def test_a_small_table_and_its_seeds():
