@@ -16,7 +16,8 @@ from kfcourse.plots import palette
 from kfcourse.plots.localization_figures import CLOSE_UP_X, CLOSE_UP_Y
 from tests.demos.layout import readout
 
-pytestmark = pytest.mark.fact  # states facts of seeded runs: repeated under other rounding (tests/facts.py)
+# Only the tests marked `fact` state facts of seeded runs: they are repeated under other rounding; the others
+# are listed in tests/facts.py UNMARKED with the reason they need no repeat.
 
 NO_LEG, LEG = LEG_OPTIONS
 TEAL = to_rgba(palette.ESTIMATE)[:3]
@@ -32,6 +33,7 @@ def is_grey_outline(patch) -> bool:
     return patch.get_edgecolor()[:3] == pytest.approx(to_rgba(palette.TRUTH)[:3]) and patch.get_facecolor()[3] == 0
 
 
+@pytest.mark.fact
 def test_first_frame_default_gate_every_reading_accepted():
     demo = kf.demos.data_association(seed=0)
     res = demo.model.result
@@ -61,6 +63,7 @@ def test_the_estimate_is_drawn_over_the_truth_and_its_ellipse_over_the_estimate(
         assert truth.get_linestyle() != "-" and truth.get_linewidth() < 2.0  # dotted, thinner than before
 
 
+@pytest.mark.fact
 def test_the_close_up_shows_the_robots_larger_wherever_the_estimate_goes():
     """The close-up's window holds the prediction, the truth and every estimate the demo can show
     (60 scans, with and without the leg, every gate), and it is drawn several times larger than the map."""
@@ -97,6 +100,7 @@ def test_the_close_up_sits_where_no_gate_reaches():
         assert not box.count_contains(pixels), "a gate runs into the close-up"
 
 
+@pytest.mark.fact
 def test_new_scan_draws_new_noise_and_keeps_the_scene_and_the_controls():
     demo = kf.demos.data_association(seed=0)
     demo.controls["leg"].value = LEG
@@ -125,6 +129,7 @@ def test_gates_drawn_around_every_landmark_and_they_grow_with_the_slider():
     assert np.linalg.norm(np.array(centres) - demo.model.scan.landmarks, axis=1).max() < 1.5
 
 
+@pytest.mark.fact
 @pytest.mark.parametrize("leg", [NO_LEG, LEG])
 @pytest.mark.parametrize("gate", [1.0, 6.0])
 def test_readout_and_picture_finite_at_the_extremes(leg, gate):
@@ -140,6 +145,7 @@ def test_readout_and_picture_finite_at_the_extremes(leg, gate):
         demo.controls["new_scan"].click()
 
 
+@pytest.mark.fact
 def test_question_3_the_readout_either_side_of_the_leg():
     """Q3: the slider steps by 0.1; at 4.7 the leg is rejected (0.0016 %), at 4.8 accepted (0.00099 %)."""
     demo = kf.demos.data_association(seed=0)
@@ -150,6 +156,7 @@ def test_question_3_the_readout_either_side_of_the_leg():
     assert demo.model.result.match[-1] == 3 and "0.00099 %" in readout(demo)
 
 
+@pytest.mark.fact
 def test_the_estimate_ellipse_is_small_and_every_gate_fits_the_picture():
     """After four readings the 2-sigma ellipse is smaller than the map's robot; the 6-sigma gates fit the axes."""
     demo = kf.demos.data_association(seed=0)

@@ -17,7 +17,8 @@ from matplotlib.text import Text
 import kfcourse as kf
 from kfcourse.demos.hallway import DOORS
 
-pytestmark = pytest.mark.fact  # states facts of seeded runs: repeated under other rounding (tests/facts.py)
+# Only the tests marked `fact` state facts of seeded runs: they are repeated under other rounding; the others
+# are listed in tests/facts.py UNMARKED with the reason they need no repeat.
 
 DEMOS = kf.demos.__all__  # every demo the course ships gets the generic checks
 # The demos with buttons, named here so that collecting the tests builds no demo;
@@ -90,6 +91,7 @@ def test_first_frame_is_drawn_and_repeatable(name):
     assert_finite(a)
 
 
+@pytest.mark.fact
 @pytest.mark.parametrize("name", DEMOS)
 def test_every_slider_at_min_max_and_middle(name):
     demo = make(name)
@@ -109,6 +111,7 @@ def test_every_slider_at_min_max_and_middle(name):
             assert_finite(demo, f"{key} = {value}")
 
 
+@pytest.mark.fact
 @pytest.mark.parametrize("name", BUTTON_DEMOS)
 def test_every_button_changes_the_picture_or_the_model(name):
     for key in buttons(make(name)):
@@ -123,6 +126,7 @@ def test_every_button_changes_the_picture_or_the_model(name):
         assert_finite(demo, f"{key} pressed")
 
 
+@pytest.mark.fact
 def test_raw_vs_filtered_animation_and_noise():
     demo = make("raw_vs_filtered")
     frame = demo.controls["frame"]
@@ -200,6 +204,7 @@ def test_hallway_reset_restores_first_frame():
     assert bytes(demo.image.value) == bytes(first)
 
 
+@pytest.mark.fact
 def test_covariance_tilts_with_rho_and_fractions():
     demo = make("covariance_ellipse")
     ring = demo.renderer.dynamic[1]

@@ -23,7 +23,8 @@ from tests.demos.describing import at_the_ends, move, press, said, shown_on_page
 from tests.demos.layout import readout, widgets_in
 from tests.demos.test_tracker import readout_lines
 
-pytestmark = pytest.mark.fact  # states facts of seeded runs: repeated under other rounding (tests/facts.py)
+# Only the tests marked `fact` state facts of seeded runs: they are repeated under other rounding; the others
+# are listed in tests/facts.py UNMARKED with the reason they need no repeat.
 
 SEEDS = (0, 1, 2)
 TEXT_SHADES = {palette.PREDICTION_TEXT, palette.MEASUREMENT_TEXT, palette.ESTIMATE_TEXT, palette.TRUTH_TEXT}
@@ -68,6 +69,7 @@ def test_a_format_the_readouts_do_not_use_is_refused():
 # --------------------------------------------------------------------------- chapter 0
 
 
+@pytest.mark.fact
 @pytest.mark.parametrize("seed", SEEDS)
 def test_raw_vs_filtered_says_the_step_the_noise_and_each_error(seed):
     demo = kf.demos.raw_vs_filtered(seed=seed)
@@ -88,6 +90,7 @@ def closest_on_the_line(demo) -> list[str]:
     return [name for name, cm in errors.items() if cm == min(errors.values())]
 
 
+@pytest.mark.fact
 @pytest.mark.parametrize("seed", SEEDS)
 def test_raw_vs_filtered_always_says_which_estimate_is_the_closest(seed):
     """Prompt 2 (sensor noise 3 m: dead reckoning beats the filter over 150 steps) and prompt 4 (New noise twice:
@@ -105,6 +108,7 @@ def test_raw_vs_filtered_always_says_which_estimate_is_the_closest(seed):
                 assert all(name in text.split(", so ")[-1] for name in closest), text
 
 
+@pytest.mark.fact
 def test_raw_vs_filtered_says_when_dead_reckoning_wins():
     demo = kf.demos.raw_vs_filtered(seed=0)
     assert said(demo).endswith("so the filter is the closest.")
@@ -117,6 +121,7 @@ def test_raw_vs_filtered_says_when_dead_reckoning_wins():
 # --------------------------------------------------------------------------- chapter 1
 
 
+@pytest.mark.fact
 @pytest.mark.parametrize("seed", SEEDS)
 def test_hallway_says_what_each_step_did_and_where_the_belief_peaks(seed):
     demo = kf.demos.hallway(seed=seed)
@@ -134,6 +139,7 @@ def test_hallway_says_what_each_step_did_and_where_the_belief_peaks(seed):
     at_the_ends(demo, ["motion_reliability", "sensor_reliability"], then=("predict", "update"))
 
 
+@pytest.mark.fact
 @pytest.mark.parametrize("seed", SEEDS)
 def test_hallway_says_a_coin_flip_sensor_leaves_the_belief_unchanged(seed):
     """Prompt 3: sensor reliability 0.5 and Update: the likelihood is flat and the belief does not change."""
@@ -153,6 +159,7 @@ def test_hallway_says_a_coin_flip_sensor_leaves_the_belief_unchanged(seed):
     assert "coin-flip" not in press(demo, "update") and "still" not in said(demo)
 
 
+@pytest.mark.fact
 @pytest.mark.parametrize("seed", SEEDS)
 def test_hallway_says_where_the_last_cell_goes_at_each_end(seed):
     """Prompt 5: on the loop cell 11's probability moves on to cell 0; prompt 6: at a wall it piles up in cell 11."""
@@ -181,6 +188,7 @@ def test_hallway_sets_the_step_off_with_a_comma():
         assert "), the belief " in text and ") the belief" not in text
 
 
+@pytest.mark.fact
 def test_hallway_names_the_cells_where_a_mirrored_belief_peaks():
     demo = kf.demos.hallway(seed=0)
     peaks = [i for i, p in enumerate(demo.model.belief) if p == pytest.approx(demo.model.belief.max())]
@@ -190,6 +198,7 @@ def test_hallway_names_the_cells_where_a_mirrored_belief_peaks():
 # --------------------------------------------------------------------------- chapter 2
 
 
+@pytest.mark.fact
 def test_covariance_says_how_sigma_stretches_and_tilts_the_ellipses():
     demo = kf.demos.covariance_ellipse(seed=0)
     assert "above the x axis" in said(demo)  # rho = 0.6: the long axis rises to the right
@@ -205,6 +214,7 @@ def test_covariance_says_how_sigma_stretches_and_tilts_the_ellipses():
 # --------------------------------------------------------------------------- chapter 3
 
 
+@pytest.mark.fact
 @pytest.mark.parametrize("seed", SEEDS)
 def test_step_through_says_what_each_press_did(seed):
     demo = kf.demos.step_through(seed=seed)
@@ -258,6 +268,7 @@ def test_trust_writes_the_fused_variance_as_the_variance_sliders_do():
 # --------------------------------------------------------------------------- chapter 6
 
 
+@pytest.mark.fact
 @pytest.mark.parametrize("seed", SEEDS)
 def test_tracker_says_the_step_the_settings_and_where_the_truth_is(seed):
     demo = kf.demos.tracker(seed=seed)
@@ -290,6 +301,7 @@ def tracker_says(demo) -> str:
     return text
 
 
+@pytest.mark.fact
 @pytest.mark.parametrize("seed", SEEDS)
 def test_tracker_says_what_the_prompts_ask_the_student_to_notice(seed):
     """Chapter 6's five prompts, driven as they say: the mode, K, the error against the ellipse, the verdict."""
@@ -323,12 +335,14 @@ def test_tracker_says_what_the_prompts_ask_the_student_to_notice(seed):
     assert text.endswith(" m off, outside the 2σ ellipse (0.40 m); over-confident.")
 
 
+@pytest.mark.fact
 def test_tracker_says_the_verdict_of_a_timid_filter():
     demo = kf.demos.tracker(seed=0)
     demo.controls["Q"].value = 10**4
     assert tracker_says(demo).endswith("; timid.")  # prompt 3: timid in most runs, this one among them
 
 
+@pytest.mark.fact
 def test_tracker_description_keeps_to_one_line_at_the_sliders_corners():
     """The picture, the readout and the controls fit a laptop's screen with one line of description: at every
     corner of the sliders, in the middle of each range, at the first, a start-up and the last steps."""
@@ -356,6 +370,7 @@ def nees_says(demo) -> str:
     return text
 
 
+@pytest.mark.fact
 @pytest.mark.parametrize("seed", SEEDS[:2])
 def test_nees_says_whether_the_curve_is_below_or_above_the_band(seed):
     """Prompts 1 to 3: honest at factor 1; Q × 0.1 above the band at every step, Q × 10 below; R the same way."""
@@ -371,6 +386,7 @@ def test_nees_says_whether_the_curve_is_below_or_above_the_band(seed):
     assert "The filter is over-confident" in nees_says(demo)
 
 
+@pytest.mark.fact
 @pytest.mark.parametrize("seed", SEEDS[:2])
 def test_nees_says_the_mistuning_where_the_curve_lies_and_the_verdict(seed):
     demo = kf.demos.nees_panel(seed=seed)

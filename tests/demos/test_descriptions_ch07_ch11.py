@@ -25,7 +25,8 @@ from tests.demos.describing import at_the_ends, move, press, said
 from tests.demos.layout import readout, widgets_in
 from tests.demos.test_landmark_loop import reference_step
 
-pytestmark = pytest.mark.fact  # states facts of seeded runs: repeated under other rounding (tests/facts.py)
+# Only the tests marked `fact` state facts of seeded runs: they are repeated under other rounding; the others
+# are listed in tests/facts.py UNMARKED with the reason they need no repeat.
 
 SEEDS = (0, 1, 2)
 TEXT_SHADES = {palette.PREDICTION_TEXT, palette.MEASUREMENT_TEXT, palette.ESTIMATE_TEXT, palette.TRUTH_TEXT}
@@ -44,6 +45,7 @@ def words(text: str) -> int:
 
 
 # --------------------------------------------------------------------------- chapter 7: linearization
+@pytest.mark.fact
 @pytest.mark.parametrize("seed", SEEDS)
 def test_linearization_names_f_m_and_s_and_says_how_the_tangent_did(seed):
     demo = kf.demos.linearization(seed=seed)
@@ -57,6 +59,7 @@ def test_linearization_names_f_m_and_s_and_says_how_the_tangent_did(seed):
     assert "s = 1.50" in move(demo, "s", 1.5)
 
 
+@pytest.mark.fact
 @pytest.mark.parametrize("function", ["x²", "sin x", "range √(x² + 1)"])
 def test_linearization_at_the_ends_of_its_sliders(function):
     demo = kf.demos.linearization(seed=0)
@@ -66,6 +69,7 @@ def test_linearization_at_the_ends_of_its_sliders(function):
         at_the_ends(demo, ["m"])
 
 
+@pytest.mark.fact
 @pytest.mark.parametrize("seed", SEEDS)
 @pytest.mark.parametrize("function", ["x²", "sin x", "range √(x² + 1)"])
 def test_linearization_at_the_narrowest_input_every_curve_is_straight(seed, function):
@@ -82,6 +86,7 @@ def test_linearization_at_the_narrowest_input_every_curve_is_straight(seed, func
             assert "Over the input's width f is nearly straight" in text and "bends" not in text, text
 
 
+@pytest.mark.fact
 def test_linearization_says_where_the_curve_bends_and_where_the_tangent_is_flat():
     """Chapter 7's prompts 1 to 4: a wide input bends, a flat tangent sees no spread."""
     demo = kf.demos.linearization(seed=0)
@@ -95,6 +100,7 @@ def test_linearization_says_where_the_curve_bends_and_where_the_tangent_is_flat(
 
 
 # --------------------------------------------------------------------------- chapter 9: sigma points
+@pytest.mark.fact
 @pytest.mark.parametrize("seed", SEEDS)
 def test_sigma_points_name_lambda_and_the_nearer_answer(seed):
     demo = kf.demos.sigma_points(seed=seed)
@@ -109,6 +115,7 @@ def test_sigma_points_name_lambda_and_the_nearer_answer(seed):
     assert "f = sin x" in move(demo, "function", "sin x") and "sampled output" in said(demo)
 
 
+@pytest.mark.fact
 @pytest.mark.parametrize("seed", SEEDS)
 def test_sigma_points_say_all_three_agree_on_a_narrow_input(seed):
     """Chapter 9's prompt 1: at s = 1.5 the UKF's mean follows the truth, the EKF's does not; at s = 0.1
@@ -119,6 +126,7 @@ def test_sigma_points_say_all_three_agree_on_a_narrow_input(seed):
     assert move(demo, "s", 0.1).endswith("the EKF 4.000 and 0.1600: all three agree.")
 
 
+@pytest.mark.fact
 def test_sigma_points_never_say_agree_where_the_prompts_see_a_difference():
     """Chapter 9's prompts 3 to 5: a flat tangent, the range at m = 2, and sin x at its top do not agree."""
     demo = kf.demos.sigma_points(seed=0)
@@ -130,6 +138,7 @@ def test_sigma_points_never_say_agree_where_the_prompts_see_a_difference():
     assert "agree" not in said(demo)  # prompt 5
 
 
+@pytest.mark.fact
 @pytest.mark.parametrize("function", ["x²", "sin x", "range √(x² + 1)"])
 def test_sigma_points_at_the_ends_of_their_sliders(function):
     demo = kf.demos.sigma_points(seed=0)
@@ -142,6 +151,7 @@ def test_sigma_points_at_the_ends_of_their_sliders(function):
 
 
 # --------------------------------------------------------------------------- chapter 8: data association
+@pytest.mark.fact
 @pytest.mark.parametrize("seed", SEEDS)
 def test_association_names_the_gate_the_leg_and_the_scan(seed):
     demo = kf.demos.data_association(seed=seed)
@@ -159,6 +169,7 @@ def leg_distance(model) -> float:
     return float(model.result.distances[-1, 3])
 
 
+@pytest.mark.fact
 @pytest.mark.parametrize("seed", range(5))
 def test_association_says_how_far_the_leg_lands(seed):
     """Chapter 8's prompts 1 and 2: the leg lands between 4 and 5σ from landmark 3, rejected by a 3σ gate
@@ -174,6 +185,7 @@ def test_association_says_how_far_the_leg_lands(seed):
     assert (taken in text) == (d <= 5.0) and (rejected in text) == (d > 5.0), text
 
 
+@pytest.mark.fact
 def test_association_names_the_scans_the_prompts_name():
     """Chapter 8's prompts 1, 2 and 4, scan 0 and scan 3, in their own numbers."""
     demo = kf.demos.data_association(seed=0)
@@ -187,6 +199,7 @@ def test_association_names_the_scans_the_prompts_name():
     assert "(the pedestrian's leg rejected at 5.21σ from landmark 3)" in move(demo, "gate", 5.0)
 
 
+@pytest.mark.fact
 def test_association_counts_the_readings_that_pass():
     demo = kf.demos.data_association(seed=0)
     for gate in (1.0, 3.0, 6.0):
@@ -196,6 +209,7 @@ def test_association_counts_the_readings_that_pass():
 
 
 # --------------------------------------------------------------------------- chapter 10: landmark loop
+@pytest.mark.fact
 @pytest.mark.parametrize("seed", (0, 1))
 def test_landmark_loop_names_each_setting_as_its_slider_shows_it(seed):
     demo = kf.demos.landmark_loop(seed=seed)
@@ -211,6 +225,7 @@ def test_landmark_loop_names_each_setting_as_its_slider_shows_it(seed):
     assert f"Run {seed + 1}, step 30:" in press(demo, "new")  # New run: the next run number
 
 
+@pytest.mark.fact
 def test_landmark_loop_names_settings_without_a_pile_of_ands():
     demo = kf.demos.landmark_loop(seed=0)
     for name, value in (("sensor", 10.0), ("trust_motion", 100.0), ("trust_sensor", 100.0)):
@@ -228,6 +243,7 @@ def areas_said(text: str) -> tuple[float, float | None]:
     return float(area), None if factor is None else float(factor)
 
 
+@pytest.mark.fact
 @pytest.mark.parametrize("seed", SEEDS)
 def test_landmark_loop_lets_you_hear_the_ellipse_balloon_and_collapse(seed):
     """Chapter 10's prompt 2: process noise 3.2, blind from step 20 to 89; the 1σ area balloons
@@ -273,6 +289,7 @@ def test_landmark_loop_says_blind_kidnapped_and_honest():
     assert "a kidnap comes at step 60" in move(demo, "frame", 10)
 
 
+@pytest.mark.fact
 def test_landmark_loop_names_your_filter_and_says_when_it_failed():
     def certain(mu, Sig, u, z, landmarks, dt, M, Q, gate):  # a flat ellipse: the NEES has no bound
         mu, _, used = reference_step(mu, Sig, u, z, landmarks, dt, M, Q, gate)
@@ -288,6 +305,7 @@ def test_landmark_loop_names_your_filter_and_says_when_it_failed():
     assert "process noise ×2.0" in move(demo, "motion", 2.0)  # still alive: every control works
 
 
+@pytest.mark.fact
 @pytest.mark.parametrize("seed", (0, 1))
 def test_landmark_loop_at_the_ends_of_its_sliders(seed):
     demo = kf.demos.landmark_loop(seed=seed)
@@ -295,6 +313,7 @@ def test_landmark_loop_at_the_ends_of_its_sliders(seed):
 
 
 # --------------------------------------------------------------------------- chapter 11: particle hallway
+@pytest.mark.fact
 @pytest.mark.parametrize("seed", SEEDS)
 def test_particle_hallway_names_the_press_and_the_particle_count(seed):
     demo = kf.demos.particle_hallway(seed=seed)
@@ -307,6 +326,7 @@ def test_particle_hallway_names_the_press_and_the_particle_count(seed):
     assert "(0 moves)" in press(demo, "reset")
 
 
+@pytest.mark.fact
 @pytest.mark.parametrize("seed", SEEDS)
 def test_particle_hallway_at_the_ends_of_its_slider(seed):
     demo = kf.demos.particle_hallway(seed=seed)
@@ -346,6 +366,7 @@ def check_peaks(demo) -> tuple[set[int], set[int]]:
     return cells_said(bar_cells), cells_said(cloud_cells)
 
 
+@pytest.mark.fact
 @pytest.mark.parametrize("seed", range(6))
 def test_particle_hallway_names_every_tied_peak(seed):
     """Every seed opens on tied bars (a door pattern seen twice or more): each is named, not the first only."""
@@ -357,6 +378,7 @@ def test_particle_hallway_names_every_tied_peak(seed):
     assert len(bars) >= 2
 
 
+@pytest.mark.fact
 def test_particle_hallway_says_ties_in_words():
     demo = kf.demos.particle_hallway(seed=0)
     assert "The bars peak at 42 % on cells 0 and 10, the particles at" in said(demo)
@@ -370,6 +392,7 @@ def test_particle_hallway_says_ties_in_words():
     )
 
 
+@pytest.mark.fact
 @pytest.mark.parametrize("seed", range(6))
 def test_particle_hallway_says_where_ten_particles_stand(seed):
     """Chapter 11's prompt 2: after ten Predict/Update pairs with 10 particles the outlines may stand on one
@@ -383,6 +406,7 @@ def test_particle_hallway_says_where_ten_particles_stand(seed):
         check_peaks(demo)
 
 
+@pytest.mark.fact
 def test_particle_hallway_new_run_changes_the_description():
     demo = kf.demos.particle_hallway(seed=0)
     for _ in range(4):  # the first looks of two seeds may agree: after a few presses they differ
@@ -391,6 +415,7 @@ def test_particle_hallway_new_run_changes_the_description():
 
 
 # --------------------------------------------------------------------------- chapter 11: particle cloud
+@pytest.mark.fact
 @pytest.mark.parametrize("seed", (0, 1))
 def test_particle_cloud_names_the_count_the_scheme_and_the_settings(seed):
     demo = kf.demos.particle_cloud(seed=seed)
@@ -407,6 +432,7 @@ def test_particle_cloud_names_the_count_the_scheme_and_the_settings(seed):
 SPREAD = re.compile(r"spread over ([0-9.]+) m by ([0-9.]+) m( of the 11 m by 8 m map)? \(the middle 95 %\)")
 
 
+@pytest.mark.fact
 @pytest.mark.parametrize("seed", SEEDS)
 def test_particle_cloud_says_a_global_start_covers_the_map(seed):
     """Chapter 11's cloud prompt 1: Global start, step 0, the cloud covers the map (11 m by 8 m);
@@ -430,6 +456,7 @@ def test_particle_cloud_says_whether_it_resampled():
         assert ("the weights are kept" in said(demo)) == (not resampled)
 
 
+@pytest.mark.fact
 def test_particle_cloud_at_the_ends_of_its_sliders():
     demo = kf.demos.particle_cloud(seed=0)  # the other seeds' words: in the test above
     at_the_ends(demo, ["frame", "particles"])

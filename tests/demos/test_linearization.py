@@ -10,7 +10,8 @@ import pytest
 
 import kfcourse as kf
 
-pytestmark = pytest.mark.fact  # states facts of seeded runs: repeated under other rounding (tests/facts.py)
+# Only the tests marked `fact` state facts of seeded runs: they are repeated under other rounding; the others
+# are listed in tests/facts.py UNMARKED with the reason they need no repeat.
 
 
 def test_first_frame_is_x_squared_and_the_ekf_is_the_tangent_gaussian():
@@ -34,6 +35,7 @@ def caption(widget) -> str:
     return "".join(caption(child) for child in getattr(widget, "children", ()))
 
 
+@pytest.mark.fact
 @pytest.mark.parametrize("extreme", [(-2.0, 0.05), (-2.0, 1.5), (2.0, 0.05), (2.0, 1.5), (0.0, 1.5)])
 def test_every_slider_extreme_draws_finite_numbers(extreme):
     m, s = extreme
@@ -45,6 +47,7 @@ def test_every_slider_extreme_draws_finite_numbers(extreme):
         assert np.isfinite([mean_e, var_e, *demo.model.sampled()]).all()
 
 
+@pytest.mark.fact
 @pytest.mark.parametrize("demo_name", ["linearization", "sigma_points"])  # chapter 7's and chapter 9's panels
 @pytest.mark.parametrize("name", ["x²", "sin x", "range √(x² + 1)"])
 def test_no_tick_label_leaves_the_picture(demo_name, name):

@@ -22,7 +22,8 @@ from kfcourse.demos.particle_cloud import (
 from tests.demos.layout import readout
 from tests.demos.particle_drive import model_with
 
-pytestmark = pytest.mark.fact  # states facts of seeded runs: repeated under other rounding (tests/facts.py)
+# Only the tests marked `fact` state facts of seeded runs: they are repeated under other rounding; the others
+# are listed in tests/facts.py UNMARKED with the reason they need no repeat.
 
 LAPTOP_PX = 680  # a 1280x800 laptop: the whole demo within 680 px
 CAPTION_PX, DESCRIPTION_PX = 19, 25  # the caption folded under its title, the description: one line each
@@ -63,6 +64,7 @@ def test_first_frame():
     assert f"{m.run.ess[FIRST_FRAME]:.0f}" in text
 
 
+@pytest.mark.fact
 def test_every_setting_reruns_the_lap_with_it():
     demo = make()
     m, c = demo.model, demo.controls
@@ -126,6 +128,7 @@ def test_readout_says_what_happened_after_the_weights():
     assert f"{run.injected[resampled]} particles injected" in text and run.injected[resampled] == 100
 
 
+@pytest.mark.fact
 @pytest.mark.parametrize(
     ("n", "global_start", "injection"), list(itertools.product([100, 10_000], [False, True], [False, True]))
 )

@@ -14,7 +14,8 @@ from kfcourse.plots.particle_hallway_view import particle_hallway_view, update_p
 from kfcourse.sim.particle_hallway_run import simulate_particle_hallway
 from tests.demos.particle_drive import presses
 
-pytestmark = pytest.mark.fact  # states facts of seeded runs: repeated under other rounding (tests/facts.py)
+# Only the tests marked `fact` state facts of seeded runs: they are repeated under other rounding; the others
+# are listed in tests/facts.py UNMARKED with the reason they need no repeat.
 
 
 def test_model_replays_the_run_record():
@@ -32,6 +33,7 @@ def test_model_replays_the_run_record():
             assert model.n_eff == pytest.approx(run.n_eff[k])
 
 
+@pytest.mark.fact
 def test_predict_compares_the_predicted_cloud_with_the_predicted_bars():
     model = ParticleHallwayModel(1, n_particles=5000)
     before = model.belief.copy()
@@ -71,6 +73,7 @@ def test_reset_and_new_run():
     assert demo.model.true_cell == kf.sim.simulate_hallway(0, seed=1).true_cell[0]
 
 
+@pytest.mark.fact
 def test_slider_extremes_draw_finite_pictures():
     demo = kf.demos.particle_hallway(seed=3)
     control = demo.controls["n_particles"]
@@ -84,6 +87,7 @@ def test_slider_extremes_draw_finite_pictures():
     assert demo.model.n_particles == N_MAX  # 10**log10(5000), rounded
 
 
+@pytest.mark.fact
 def test_texts_clear_the_bars():
     model = ParticleHallwayModel(0, n_particles=10)
     view = particle_hallway_view(model.doors)

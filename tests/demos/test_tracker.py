@@ -19,7 +19,8 @@ from kfcourse.filters.gaussian import ellipse_axes
 from kfcourse.sim.target import START_STEPS, filter_target, process_noise
 from tests.demos.layout import readout, widgets_in
 
-pytestmark = pytest.mark.fact  # states facts of seeded runs: repeated under other rounding (tests/facts.py)
+# Only the tests marked `fact` state facts of seeded runs: they are repeated under other rounding; the others
+# are listed in tests/facts.py UNMARKED with the reason they need no repeat.
 
 # A 1280x800 laptop: the whole demo (its folded caption, picture, description and controls) within 680 px, in an
 # output 848 px wide (what tests/browser/test_notebooks_in_lab.py measures in JupyterLab).
@@ -53,6 +54,7 @@ def slider_to(demo, key, value):
 
 
 # --------------------------------------------------------------------------- controls
+@pytest.mark.fact
 def test_filter_sliders_retune_the_filter_not_the_world():
     demo = make()
     m = demo.model
@@ -85,6 +87,7 @@ def test_sensor_slider_changes_the_world_and_the_filter_is_told_the_truth():
     assert "filter's Q = 0.1 m², true 1 m²" in readout(demo)
 
 
+@pytest.mark.fact
 def test_new_run_draws_new_noise_and_keeps_the_settings():
     demo = make()
     m = demo.model
@@ -166,6 +169,7 @@ def test_time_and_retuning_never_redraw_the_map():
     assert limits[0][0] < lo[0] and hi[0] < limits[0][1] and limits[1][0] < lo[1] and hi[1] < limits[1][1]
 
 
+@pytest.mark.fact
 def test_first_frame_is_useful_and_seeded():
     a, b, c = make(0), make(0), make(1)
     assert a.model.frame > 20 and "balanced" in a.model.regime()
@@ -173,6 +177,7 @@ def test_first_frame_is_useful_and_seeded():
     assert bytes(a.image.value) != bytes(c.image.value)  # another seed, other readings
 
 
+@pytest.mark.fact
 @pytest.mark.parametrize("sigma", [0.1, 5.0])
 @pytest.mark.parametrize(("q", "r"), [(1e-3, 1e-3), (1e-3, 1e7), (1e4, 1e-3), (1e4, 1e7)])
 def test_slider_corners_stay_finite(q, r, sigma):
@@ -189,6 +194,7 @@ def test_slider_corners_stay_finite(q, r, sigma):
 
 
 # --------------------------------------------------------------------------- failure modes
+@pytest.mark.fact
 def test_lag_on_turns_grows_with_Q():
     demo = make()
     tuned = lag_in_turns(demo.model)
@@ -198,6 +204,7 @@ def test_lag_on_turns_grows_with_Q():
     assert tuned < lag_in_turns(demo.model) < 4 * tuned  # on the way: it grows with Q
 
 
+@pytest.mark.fact
 def test_jitter_grows_with_R_and_K_goes_to_1():
     demo = make()
     m = demo.model
@@ -241,6 +248,7 @@ def rows_fit_the_output(demo) -> bool:
     return True
 
 
+@pytest.mark.fact
 def test_picture_and_controls_fit_a_laptop_at_every_corner_of_the_sliders():
     demo = make()
     c = demo.controls

@@ -10,7 +10,8 @@ import pytest
 import kfcourse as kf
 from kfcourse.plots.loop import error_strips, loop_figure, loop_map, strip_limit
 
-pytestmark = pytest.mark.fact  # states facts of seeded runs: repeated under other rounding (tests/facts.py)
+# Only the tests marked `fact` state facts of seeded runs: they are repeated under other rounding; the others
+# are listed in tests/facts.py UNMARKED with the reason they need no repeat.
 
 
 def tick_values(ax) -> list[float]:
@@ -106,6 +107,7 @@ def test_run_never_redraws_the_background():
         assert strip_state(demo) == (limits, draws)
 
 
+@pytest.mark.fact
 def test_a_new_run_redraws_the_background_only_when_the_limits_change():
     """A change of setting reruns the lap: the strips take the new run's limits, drawn in full once,
     and a change that keeps the limits only blits; either way the picture is right."""
@@ -147,6 +149,7 @@ def beam_ends(lines) -> np.ndarray:
     return sorted_rows([seg[-1] for seg in lines.get_segments()])
 
 
+@pytest.mark.fact
 def test_the_teal_beams_go_to_the_landmarks_the_filter_matched():
     """An EKF started at the mirror of the start, its readings unlabelled, matches each reading to the
     mirror landmark: its teal beams run from its estimate to those; the orange ones, to the landmarks

@@ -18,7 +18,8 @@ from kfcourse.plots import palette
 from kfcourse.plots.particle_hallway_view import particle_hallway_view, update_particle_hallway
 from kfcourse.plots.particles import DOT_SIZE, RESAMPLE_LINE, cloud_chart, cloud_view, update_cloud_view, weight_shades
 
-pytestmark = pytest.mark.fact  # states facts of seeded runs: repeated under other rounding (tests/facts.py)
+# No test here states a fact of a seeded run: those that run one are listed in tests/facts.py UNMARKED with the
+# reason they need no repeat.
 
 
 @pytest.fixture(scope="module")

@@ -10,7 +10,8 @@ from matplotlib.lines import Line2D
 import kfcourse as kf
 from kfcourse.plots import palette
 
-pytestmark = pytest.mark.fact  # states facts of seeded runs: repeated under other rounding (tests/facts.py)
+# Only the tests marked `fact` state facts of seeded runs: they are repeated under other rounding; the others
+# are listed in tests/facts.py UNMARKED with the reason they need no repeat.
 
 
 def lines_by_colour(ax, colour):
@@ -67,6 +68,7 @@ def test_bottom_panel_is_innovations_in_their_sqrt_S_band():
     assert isinstance(innovation, Line2D)
 
 
+@pytest.mark.fact
 @pytest.mark.parametrize("start", [0, 20])
 def test_mean_innovation_line_covers_its_window_and_the_legend_names_it(start):
     """The dashed mean is over the steps from index ``start`` on, drawn only there, and its legend

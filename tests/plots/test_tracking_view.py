@@ -21,7 +21,8 @@ from kfcourse.plots.tracking import (
     velocity_tip,
 )
 
-pytestmark = pytest.mark.fact  # states facts of seeded runs: repeated under other rounding (tests/facts.py)
+# No test here states a fact of a seeded run: those that run one are listed in tests/facts.py UNMARKED with the
+# reason they need no repeat.
 
 
 @pytest.fixture(scope="module")

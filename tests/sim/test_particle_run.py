@@ -15,7 +15,8 @@ import pytest
 import kfcourse as kf
 from kfcourse.sim.capstone_world import BEARING_STD, RANGE_STD
 
-pytestmark = pytest.mark.fact  # states facts of seeded runs: repeated under other rounding (tests/facts.py)
+# Only the tests marked `fact` state facts of seeded runs: they are repeated under other rounding; the others
+# are listed in tests/facts.py UNMARKED with the reason they need no repeat.
 
 SEEDS = range(20)
 KIDNAP = 60  # the kidnap of chapter 10
@@ -47,6 +48,7 @@ def test_the_world_is_chapter_tens_draw_for_draw():
     np.testing.assert_array_equal(other.odometry, kf.sim.landmark_loop(3).odometry)
 
 
+@pytest.mark.fact
 def test_record_is_consistent_and_read_only():
     run = kf.sim.particle_loop(0, n_particles=300)
     T, N = run.t.size, 300
@@ -68,6 +70,7 @@ def test_record_is_consistent_and_read_only():
     assert (run.n_particles, run.resample, run.seed, run.laps, run.labelled) == (N, "systematic", 0, 1, True)
 
 
+@pytest.mark.fact
 def test_the_start_is_one_of_the_poses_given():
     start = kf.sim.loop_world(3).start
     a, b = kf.sim.particle_loop(3, n_particles=200), kf.sim.particle_loop(3, n_particles=200, starts=[start])
@@ -82,6 +85,7 @@ def test_the_start_is_one_of_the_poses_given():
     assert np.linalg.norm(run.particles[0, :, :2] - docks[nearest, :2], axis=1).max() < 1.0  # each spread by SIG0
 
 
+@pytest.mark.fact
 def test_seeded():
     a, b = kf.sim.particle_loop(5, n_particles=200), kf.sim.particle_loop(5, n_particles=200)
     np.testing.assert_array_equal(a.particles, b.particles)
@@ -89,6 +93,7 @@ def test_seeded():
     assert not np.array_equal(a.mu, c.mu)
 
 
+@pytest.mark.fact
 def test_a_normal_lap_follows_the_robot_honestly(laps):
     # measured over seeds 0-19: largest error 0.16 m; truth inside 3 sigma at 91 % to 100 % of the steps, 99 % overall
     for run in laps:
@@ -98,12 +103,14 @@ def test_a_normal_lap_follows_the_robot_honestly(laps):
     assert np.mean([run.share_inside for run in laps]) >= 0.95
 
 
+@pytest.mark.fact
 @pytest.mark.parametrize("scheme", ["multinomial", "stratified"])
 def test_every_resampling_scheme_follows_the_robot(scheme):
     run = kf.sim.particle_loop(0, resample=scheme)
     assert run.error.max() < 0.3 and run.resample == scheme
 
 
+@pytest.mark.fact
 def test_a_global_start_localizes_within_one_lap():
     runs = _runs(global_start=True)
     # measured: 20 of 20
@@ -113,6 +120,7 @@ def test_a_global_start_localizes_within_one_lap():
         assert (spread > 0.9 * np.diff(run.bounds, axis=1).ravel()).all()
 
 
+@pytest.mark.fact
 def test_a_kidnapped_robot_is_not_found_without_injection():
     runs = _runs(kidnap=KIDNAP)
     # measured: 0 of 20, the error 8 to 10 m at the lap's end
@@ -120,6 +128,7 @@ def test_a_kidnapped_robot_is_not_found_without_injection():
     assert all(run.error[: KIDNAP - 1].max() < 0.3 for run in runs)  # tracked until the kidnap
 
 
+@pytest.mark.fact
 def test_with_a_fixed_share_injected_a_kidnapped_robot_is_found_again():
     runs = _runs(kidnap=KIDNAP, injection=SHARE)
     # measured: 19 of 20
@@ -128,6 +137,7 @@ def test_with_a_fixed_share_injected_a_kidnapped_robot_is_found_again():
     np.testing.assert_array_equal(run.injected, np.where(run.resampled, round(SHARE * run.n_particles), 0))
 
 
+@pytest.mark.fact
 def test_augmented_mcl_finds_a_kidnapped_robot_and_injects_little_while_it_is_not_lost():
     runs = _runs(kidnap=KIDNAP, injection="augmented")
     # measured: 19 of 20
@@ -136,6 +146,7 @@ def test_augmented_mcl_finds_a_kidnapped_robot_and_injects_little_while_it_is_no
     assert calm.injected.sum() < 0.1 * runs[0].injected.sum()  # the kidnap sets it injecting, a calm lap hardly
 
 
+@pytest.mark.fact
 def test_unlabelled_readings_are_weighed_with_the_whole_map():
     run = kf.sim.particle_loop(2, n_particles=300, global_start=True, labelled=False)
     assert run.labelled is False
@@ -156,6 +167,7 @@ def run_q(run):
     return np.diag([run.sensor_noise * RANGE_STD, run.sensor_noise * BEARING_STD]) ** 2
 
 
+@pytest.mark.fact
 def test_localized_is_one_test_for_every_filter():
     pf = kf.sim.particle_loop(0, n_particles=300)
     assert kf.sim.localized(pf) is pf.localized() is True
@@ -176,6 +188,7 @@ def test_localized_is_one_test_for_every_filter():
             kf.sim.localized(pf, bound=bound)
 
 
+@pytest.mark.fact
 def test_extreme_settings_give_finite_runs():
     for settings in (
         {"n_particles": 1},
