@@ -8,6 +8,8 @@ it pass in a cell whose output is not compared.
 notebook kernels (``tests/rounding.py``): a run whose stated facts change under a
 perturbation of 1e-12 states digits of this machine's rounding, not facts.
 
+The frozen runs the tests share are built once per process (``tests/frozen_runs.py``).
+
 Every notebook cell is marked ``fact``: a chapter states facts of its seeded runs.  In a run without
 ``--perturb``, a test that runs a seeded simulation without the ``fact`` marker fails
 (``tests/facts.py``): the repeats select by that marker.
@@ -34,10 +36,11 @@ def pytest_addoption(parser):
 
 
 def pytest_configure(config):
+    from tests import facts, frozen_runs
+
+    frozen_runs.install(facts.count_one)  # each frozen run built once per process (tests/frozen_runs.py)
     size = config.getoption("--perturb")
     if size is None:
-        from tests import facts
-
         facts.install()
         return
     from tests import rounding

@@ -333,6 +333,11 @@ def _counting(default_rng):
     return counted
 
 
+def count_one() -> None:
+    """Count a seeded run handed out again (``tests/frozen_runs.py``) as a generator made: its test used one."""
+    _made[0] += 1
+
+
 def install() -> None:
     """Count every generator made from now on (the guard's eyes)."""
     np.random.default_rng = _counting(np.random.default_rng)
