@@ -43,6 +43,7 @@ import os
 import re
 import shutil
 import sys
+import tempfile
 import time
 from importlib import resources
 from pathlib import Path
@@ -263,6 +264,11 @@ def mathjax_folder() -> Path:
         sys.exit("tools/build_site.py needs jupyter-server-mathjax: pip install -r requirements-dev.txt")
 
 
+# jupyter_client interrupts a kernel (SIGINT) before it asks it to shut down; a kernel still handling a
+# message then logs this to its stderr, an error that is not one.
+SHUTDOWN_NOISE = "KeyboardInterrupt caught in kernel."
+
+
 class SiteClient(NotebookClient):
     """Executes a notebook and, after every cell that showed a demo, asks the kernel for the demo's
     caption, its description and the recording of its run; the demo's output becomes a static figure."""
@@ -460,7 +466,12 @@ def build(out: Path, folder: Path, jobs: int = JOBS) -> list[dict]:
             resources={"metadata": {"path": str(path.parent)}},
             config=kernel_config(),
         )
-        await client.async_execute()
+        with tempfile.TemporaryFile(mode="w+", encoding="utf-8") as kernel_log:
+            await client.async_execute(stderr=kernel_log)  # the kernel process's own log, apart from the cells'
+            kernel_log.seek(0)
+            said = [line for line in kernel_log.read().splitlines() if line.strip() and SHUTDOWN_NOISE not in line]
+        if said:  # anything the kernel logged but the interrupt its shutdown sends it
+            print(f"{pages[i]['href']}: the kernel logged\n  " + "\n  ".join(said), flush=True)
         t1 = time.monotonic()
         async with exporting:  # in a thread: meanwhile the other kernel's messages are still read
             await asyncio.to_thread(export, i)
