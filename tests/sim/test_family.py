@@ -53,6 +53,9 @@ def test_only_the_particle_filter_survives_the_kidnap(family):
     assert family.scores["EKF"].found.sum() <= 4
     assert family.scores["UKF"].found.sum() <= 4
     assert family.scores["PF 2000"].found.sum() >= 16
+    # chapter 11 states these over ten seeds; here over twenty (measured: none; 9 against 19)
+    assert family.scores["EKF"].found.sum() + family.scores["UKF"].found.sum() == 0
+    assert family.scores["PF 200"].found.sum() <= family.scores["PF 2000"].found.sum() - 5
 
 
 def test_the_particle_filter_localizes_from_a_global_start(family):
