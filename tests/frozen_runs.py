@@ -10,6 +10,7 @@ a call given a function (a student's step), an array or another run (``since=``)
 time.  Handing out a kept run counts as making a seeded generator (``tests/facts.py``): a test
 that uses a seeded run is seen by the ``fact`` guard whether the run was built for it or before.
 The repeats run in processes of their own, so a run kept there was built under their rounding.
+``kf.sim.family_table`` is left to build its own runs: it times one of them.
 """
 
 from __future__ import annotations
@@ -55,7 +56,8 @@ def install(counted) -> None:
     for build in (landmark_lap.landmark_loop, particle_lap.particle_loop):
         kept = _kept(build, counted)
         for name, module in list(sys.modules.items()):
-            if name == "kfcourse" or name.startswith("kfcourse."):
+            # family_table times a lap of particle_loop: a kept run would time nothing, so it builds its own
+            if (name == "kfcourse" or name.startswith("kfcourse.")) and name != "kfcourse.sim.family":
                 for attribute, value in list(vars(module).items()):
                     if value is build:
                         setattr(module, attribute, kept)
