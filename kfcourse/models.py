@@ -1,7 +1,8 @@
 """Motion and measurement models with their Jacobians.
 
 A pose is ``[x, y, theta]`` (m, m, rad); a control is ``[V, omega]`` (m/s, rad/s);
-a landmark is ``[mx, my]`` (m); a range-bearing reading is ``[r, phi]`` (m, rad).
+a landmark is ``[mx, my]`` (m); a range-bearing reading is ``[r, phi]`` (m, rad); a beacon is
+``[bx, by]`` (m) and a range-only reading ``[r]`` (m).
 """
 
 from __future__ import annotations
@@ -22,6 +23,10 @@ __all__ = [
     "range_bearing_jacobian",
     "range_bearing_mean",
     "range_bearing_residual",
+    "range_only",
+    "range_only_jacobian",
+    "scaled_range",
+    "scaled_range_jacobian",
     "unicycle",
     "unicycle_control_jacobian",
     "unicycle_jacobian",
@@ -395,3 +400,131 @@ def range_bearing_mean(points, weights) -> np.ndarray:
     ndarray, shape (2,)
     """
     return _mean_with_angle(*_points_weights(points, weights), 1)
+
+
+def _beacon_offset(state, beacon, n: int | None = None, jacobian: bool = False):
+    """Checked state(s), and each robot's offset from the beacon and range: (s, dx, dy, r) with dx = x - bx,
+    dy = y - by, r = hypot(dx, dy) (numbers for one state, else one entry per state, shape (N,)).  A state
+    has n entries (any n >= 2 unless given), the position [x, y] first; a Jacobian (``jacobian``) is taken
+    at one state, away from the beacon."""
+    if n is not None:
+        s = _rows(state, "state", n)
+    else:
+        s = v.finite(state, "state")
+        if s.ndim not in (1, 2) or s.shape[-1] < 2:
+            raise ValueError(f"state must have shape (n,) or (N, n) with n >= 2 ([x, y, ...]), got {s.shape}")
+    if jacobian and s.ndim != 1:  # a Jacobian is taken at one point
+        raise ValueError(f"state must have shape ({'n' if n is None else n},), got {s.shape}")
+    b = v.vector(beacon, "beacon", 2)
+    dx, dy = s.T[0] - b[0], s.T[1] - b[1]
+    r = np.hypot(dx, dy)  # r = sqrt(dx^2 + dy^2), 0 only where the robot stands on the beacon
+    if jacobian and r == 0.0:
+        raise ValueError(
+            "beacon must not sit exactly at the robot's position: the robot stands on the beacon, where the "
+            "range has no direction (Jacobian undefined)"
+        )
+    return s, dx, dy, r
+
+
+def range_only(state, beacon) -> np.ndarray:
+    r"""Range from the robot to a beacon at a known position: what a ranging radio reads.
+
+    .. math:: h = \sqrt{(x - b_x)^2 + (y - b_y)^2}
+
+    Only the position ``[x, y]``, the first two entries of the state, counts: the state may be a
+    pose ``[x, y, theta]`` or a pose with more entries (such as the range scale of
+    :func:`scaled_range`).  A robot standing exactly at the beacon reads 0.
+    Introduced in chapter 12; the particle filter there weighs every particle at once.
+
+    Parameters
+    ----------
+    state : array_like, shape (n,) or (N, n), n >= 2
+        State ``[x, y, ...]``, or N states one a row.
+    beacon : array_like, shape (2,)
+        Beacon ``[bx, by]``.
+
+    Returns
+    -------
+    ndarray, shape (1,) or (N, 1)
+        ``[r]``, or one row per state: a reading is a vector of length 1, so that it plugs into the
+        EKF's ``z``, ``h`` and ``H`` with a (1, 1) ``Q``.
+    """
+    _, _, _, r = _beacon_offset(state, beacon)
+    return r[..., None]  # h = r, one entry per reading
+
+
+def range_only_jacobian(state, beacon) -> np.ndarray:
+    r"""Jacobian :math:`H = \partial h / \partial (x, y, \ldots)` of :func:`range_only`.
+
+    With :math:`r = \sqrt{(x - b_x)^2 + (y - b_y)^2}`:
+
+    .. math:: H = \begin{bmatrix} \dfrac{x - b_x}{r} & \dfrac{y - b_y}{r} & 0 & \cdots & 0 \end{bmatrix}
+
+    the unit vector from the beacon to the robot, and a zero for every entry after the position
+    (the heading does not change a range).  :func:`range_bearing_jacobian` writes the offset the
+    other way round, :math:`\Delta x = m_x - x`, so its range row reads :math:`-\Delta x/\sqrt q`:
+    the same numbers.  At the beacon (r = 0) the direction, and so H, is undefined.
+    Introduced in chapter 12.
+
+    Parameters
+    ----------
+    state : array_like, shape (n,), n >= 2
+    beacon : array_like, shape (2,)
+
+    Returns
+    -------
+    ndarray, shape (1, n)
+    """
+    s, dx, dy, r = _beacon_offset(state, beacon, jacobian=True)
+    H = np.zeros((1, s.size))
+    H[0, 0], H[0, 1] = dx / r, dy / r  # H = [(x - bx)/r, (y - by)/r, 0]
+    return H
+
+
+def scaled_range(state, beacon) -> np.ndarray:
+    r"""Range to a beacon as read by a radio that reads ``s`` times the true distance.
+
+    .. math:: h = s\,\sqrt{(x - b_x)^2 + (y - b_y)^2}
+
+    The state is the pose augmented with the range scale, ``[x, y, theta, s]``, so that the filter
+    estimates the scale along with the pose (the chapter's radio reads about 7 % long,
+    s ≈ 1.07).  Introduced in chapter 12.
+
+    Parameters
+    ----------
+    state : array_like, shape (4,) or (N, 4)
+        State ``[x, y, theta, s]``, or N states one a row.
+    beacon : array_like, shape (2,)
+        Beacon ``[bx, by]``.
+
+    Returns
+    -------
+    ndarray, shape (1,) or (N, 1)
+        ``[s r]``, or one row per state.
+    """
+    s, _, _, r = _beacon_offset(state, beacon, 4)
+    return (s.T[3] * r)[..., None]  # h = s r
+
+
+def scaled_range_jacobian(state, beacon) -> np.ndarray:
+    r"""Jacobian :math:`H = \partial h / \partial (x, y, \theta, s)` of :func:`scaled_range`.
+
+    With :math:`r = \sqrt{(x - b_x)^2 + (y - b_y)^2}`:
+
+    .. math:: H = \begin{bmatrix} s\,\dfrac{x - b_x}{r} & s\,\dfrac{y - b_y}{r} & 0 & r \end{bmatrix}
+
+    the scale times :func:`range_only_jacobian` for the position, and the true distance for the
+    scale.  At the beacon (r = 0) the direction, and so H, is undefined.  Introduced in chapter 12.
+
+    Parameters
+    ----------
+    state : array_like, shape (4,)
+    beacon : array_like, shape (2,)
+
+    Returns
+    -------
+    ndarray, shape (1, 4)
+    """
+    s, dx, dy, r = _beacon_offset(state, beacon, 4, jacobian=True)
+    k = s[3]  # the range scale
+    return np.array([[k * dx / r, k * dy / r, 0.0, r]])  # H = [s(x - bx)/r, s(y - by)/r, 0, r]

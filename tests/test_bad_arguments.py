@@ -171,6 +171,10 @@ EXAMPLES: dict[str, dict] = {
     "kf.models.pose_residual": dict(a=POSES, b=POSES[::-1]),
     "kf.models.range_bearing_mean": dict(points=READINGS, weights=[0.5, 0.5]),
     "kf.models.range_bearing_residual": dict(a=READINGS, b=READINGS[::-1]),
+    "kf.models.range_only": dict(state=POSES, beacon=LANDMARK),
+    "kf.models.range_only_jacobian": dict(state=POSE, beacon=LANDMARK),
+    "kf.models.scaled_range": dict(state=[[0.0, 0.0, 0.0, 1.07], [1.0, 0.5, 0.3, 1.07]], beacon=LANDMARK),
+    "kf.models.scaled_range_jacobian": dict(state=[0.0, 0.0, 0.0, 1.07], beacon=LANDMARK),
     # ---------------------------------------------------------------- kf.sim: the cheapest settings
     "kf.sim.association_scan": dict(seed=0, leg=True),
     "kf.sim.bias_drift": dict(scale_error=0.01, distance=400.0),
