@@ -109,6 +109,10 @@ EXAMPLES: dict[str, dict] = {
         mu=POSE, Sig=SIG_POSE, u=ODOMETRY, z=READINGS, landmarks=MARKS, dt=DT, M=M_ODO, Q=Q_RB, gate=4.0,
     ),
     "kf.ekf_predict": dict(mu=POSE, Sig=SIG_POSE, u=ODOMETRY, g=motion, G=motion_jacobian, R=0.01 * I3),
+    "kf.ekf_rts_smoother": dict(
+        mu=[POSE] * 3, Sig=[SIG_POSE] * 3, mu_bar=[POSE] * 3, Sig_bar=[SIG_POSE + 0.01 * I3] * 3, G=motion_jacobian,
+        u=[ODOMETRY] * 3, residual=kf.models.pose_residual,
+    ),
     "kf.ekf_update": dict(
         mu_bar=POSE, Sig_bar=SIG_POSE, z=[2.2, 0.4], h=reading, H=reading_jacobian, Q=Q_RB,
         residual=kf.models.range_bearing_residual,
@@ -142,6 +146,10 @@ EXAMPLES: dict[str, dict] = {
     "kf.resample_multinomial": dict(w=WEIGHTS, rng=RNG),
     "kf.resample_stratified": dict(w=WEIGHTS, rng=RNG),
     "kf.resample_systematic": dict(w=WEIGHTS, rng=RNG),
+    "kf.rts_smoother": dict(
+        mu=[POSE] * 3, Sig=[SIG_POSE] * 3, mu_bar=[POSE] * 3, Sig_bar=[SIG_POSE + 0.01 * I3] * 3,
+        F=motion_jacobian(POSE, ODOMETRY), residual=kf.models.pose_residual,
+    ),
     "kf.sigma_points": dict(mu=[0.0, 1.0], Sig=I2, lam=1.0, beta=2.0),
     "kf.steady_state_1d": dict(R=0.2, Q=0.1, a=1.0, c=1.0),
     "kf.ukf_predict": dict(

@@ -19,6 +19,7 @@ from .particle import (
     resample_stratified,
     resample_systematic,
 )
+from .smoother import ekf_rts_smoother, rts_smoother
 from .ukf import sigma_points, ukf_predict, ukf_update, unscented_1d, unscented_transform
 
 __all__ = [
@@ -31,6 +32,7 @@ __all__ = [
     "effective_sample_size",
     "ekf_localization_step",
     "ekf_predict",
+    "ekf_rts_smoother",
     "ekf_update",
     "ellipse_axes",
     "fuse",
@@ -56,6 +58,7 @@ __all__ = [
     "resample_multinomial",
     "resample_stratified",
     "resample_systematic",
+    "rts_smoother",
     "sigma_points",
     "steady_state_1d",
     "ukf_predict",
