@@ -3,9 +3,9 @@
 ``import kfcourse as kf`` gives the whole student-facing API.  Noise letters
 follow the course: ``R`` is process (motion) noise, ``Q`` measurement noise.
 
-The sub-packages that draw (``kf.plots``) or build widgets (``kf.demos``), and
-the simulation engines (``kf.sim``), load only when first used, so importing
-the math never imports matplotlib or ipywidgets.
+The sub-packages that draw (``kf.plots``) or build widgets (``kf.demos``), the
+simulation engines (``kf.sim``) and the logs of real robots (``kf.data``) load only
+when first used, so importing the math never imports matplotlib, ipywidgets or scipy.
 """
 
 from __future__ import annotations
@@ -27,7 +27,7 @@ from .models import (
 
 __version__ = "0.1.0"
 
-_LAZY = ("check", "demos", "plots", "sim")
+_LAZY = ("check", "data", "demos", "plots", "sim")
 
 __all__ = [
     *_filters_all,

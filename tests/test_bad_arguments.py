@@ -1,6 +1,6 @@
 """Every public function and demo refuses a bad value of each argument, and its message names it.
 
-The table :data:`EXAMPLES` holds one valid call of every function in ``kf.__all__``,
+The table :data:`EXAMPLES` holds one valid call of every function in ``kf.__all__``, ``kf.data.__all__``,
 ``kf.models.__all__``, ``kf.sim.__all__`` and ``kf.demos.__all__``, by keyword, every
 argument given.  From each valid value :func:`bad_values` derives the bad ones that fit its
 kind (a number, an array, a switch, a choice, a callable, a seed, a record), and each is
@@ -20,7 +20,7 @@ import pytest
 
 import kfcourse as kf
 
-SPACES = {"kf": kf, "kf.models": kf.models, "kf.sim": kf.sim, "kf.demos": kf.demos}
+SPACES = {"kf": kf, "kf.models": kf.models, "kf.sim": kf.sim, "kf.data": kf.data, "kf.demos": kf.demos}
 
 
 def _public() -> dict:
@@ -246,6 +246,8 @@ EXAMPLES: dict[str, dict] = {
         n_steps=3, u=1.0, R_true=0.01, Q_true=0.25, R=0.02, Q=0.2, velocity=0.1, x0=0.0, mu0=0.5, var0=0.25, seed=0,
     ),
     "kf.sim.start_cell": dict(rng=RNG, n_cells=12),
+    # ---------------------------------------------------------------- kf.data: the logs of real robots
+    "kf.data.load_plaza": dict(name="Plaza1"),
     # ---------------------------------------------------------------- kf.demos: each builds a figure
     **{f"kf.demos.{name}": dict(seed=0) for name in kf.demos.__all__},
     "kf.demos.landmark_loop": dict(seed=0, filter=kf.ekf_localization_step),
