@@ -54,6 +54,8 @@ WORLD = kf.sim.simulate_robot(SHORT, DT, landmarks=MARKS, sensor_range=6.0)
 PREDICT, UPDATE = kf.sim.loop_filter("ekf", DT, M_ODO, Q_RB)
 TRACK = kf.sim.localize(WORLD, PREDICT, UPDATE, SIG_POSE)
 LAP = kf.sim.landmark_loop(0)
+PLAZA = kf.data.load_plaza("Plaza2")
+RANGES = kf.sim.range_localize(PLAZA, steps=5)
 SCAN = kf.sim.association_scan(0, leg=True)
 TARGET = kf.sim.simulate_target(0)
 BATCH = kf.sim.simulate_tracks(n_tracks=2, n_steps=3)
@@ -224,6 +226,9 @@ EXAMPLES: dict[str, dict] = {
     "kf.sim.plain_and_gated": dict(z=[0.1, -0.2, 5.0], mu0=0.0, var0=1.0, R=0.01, Q=0.25, gate=3.0),
     "kf.sim.process_noise": dict(dt=0.1, accel_var=1.0),
     "kf.sim.process_noise_of_odometry": dict(mu=POSE, u=ODOMETRY, dt=DT, M=M_ODO),
+    "kf.sim.range_localize": dict(
+        log=PLAZA, speed_std=0.05, turn_std=0.02, range_std=0.5, scale=1.07, gate=3.0, start=POSE, steps=5
+    ),
     "kf.sim.read_door": dict(cell=3, doors=DOORS, reliability=0.9, rng=RNG),
     "kf.sim.readings": dict(
         truth=POSES, landmarks=MARKS, sensor_range=4.0, range_std=0.1, bearing_std=0.03, xi=np.zeros((2, 2, 2)),
@@ -245,6 +250,7 @@ EXAMPLES: dict[str, dict] = {
     "kf.sim.simulate_walk": dict(
         n_steps=3, u=1.0, R_true=0.01, Q_true=0.25, R=0.02, Q=0.2, velocity=0.1, x0=0.0, mu0=0.5, var0=0.25, seed=0,
     ),
+    "kf.sim.smoothed": dict(run=RANGES),
     "kf.sim.start_cell": dict(rng=RNG, n_cells=12),
     # ---------------------------------------------------------------- kf.data: the logs of real robots
     "kf.data.load_plaza": dict(name="Plaza1"),

@@ -1,5 +1,6 @@
-"""Seeded simulation engines.  Each returns an immutable run record (arrays over
-time), or is a pure function of its inputs and a seeded generator."""
+"""Seeded simulation engines, and the course's filters run over them and over a real robot's log
+(:mod:`~kfcourse.sim.range_run`).  Each returns an immutable run record (arrays over time), or is a
+pure function of its inputs and a seeded generator."""
 
 from .capstone_world import loop_world
 from .drift import bias_drift, drift_sigma, monte_carlo_drift
@@ -22,6 +23,7 @@ from .loop_filters import gate_within, localize, loop_filter, process_noise_of_o
 from .loop_records import LoopRun, Track
 from .particle_hallway_run import ParticleHallwayRun, simulate_particle_hallway
 from .particle_lap import ParticleRun, localized, particle_loop
+from .range_run import DATA_SHEET, RangeRun, range_localize, smoothed
 from .robot import DEFAULT_LANDMARKS, RobotRun, loop_controls, readings, simulate_robot
 from .scan import AssociationScan, GatedUpdate, association_scan, gated_update
 from .scores import nees, nees_band
@@ -39,6 +41,7 @@ from .target import (
 from .walk import simulate_walk
 
 __all__ = [
+    "DATA_SHEET",
     "DEFAULT_LANDMARKS",
     "TWO_LANDMARKS",
     "AssociationScan",
@@ -52,6 +55,7 @@ __all__ = [
     "OutlierRun",
     "ParticleHallwayRun",
     "ParticleRun",
+    "RangeRun",
     "RobotRun",
     "TargetEstimates",
     "TargetRun",
@@ -84,6 +88,7 @@ __all__ = [
     "plain_and_gated",
     "process_noise",
     "process_noise_of_odometry",
+    "range_localize",
     "read_door",
     "readings",
     "run_ekf",
@@ -94,5 +99,6 @@ __all__ = [
     "simulate_target",
     "simulate_tracks",
     "simulate_walk",
+    "smoothed",
     "start_cell",
 ]

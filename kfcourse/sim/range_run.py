@@ -1,0 +1,289 @@
+"""An EKF over a real robot's log (chapter 12): wheel odometry to predict, radio ranges to beacons to update.
+
+:func:`range_localize` runs the course's EKF steps over a :class:`~kfcourse.data.PlazaLog`: at each odometry
+step it predicts with the unicycle of chapter 8 (the step's distance and turn over its duration), then updates
+with each range that arrived during the step, one at a time, through the range-only model (chapter 12) and,
+if asked, chapter 8's validation gate.  The radio's scale is the filter's to assume (a number) or to estimate
+(``"online"``: a fourth state).  :func:`smoothed` runs the RTS smoother backwards over the result.  The record,
+:class:`RangeRun`, measures the filter against the log's ground truth.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+from typing import TYPE_CHECKING
+
+import numpy as np
+
+from .. import _validate as v
+from ..filters.association import mahalanobis
+from ..filters.ekf import ekf_predict, ekf_update
+from ..filters.smoother import ekf_rts_smoother
+from ..models import (
+    pose_residual,
+    range_only,
+    range_only_jacobian,
+    scaled_range,
+    scaled_range_jacobian,
+    unicycle,
+    unicycle_jacobian,
+    wrap_angle,
+)
+from .loop_filters import process_noise_of_odometry
+from .records import Record
+from .scores import nees
+
+if TYPE_CHECKING:
+    from ..data import PlazaLog
+
+# What the filter is told before anyone looks at the data: the wheels' speed and turn-rate noise, and the radio's
+# range noise as its maker would quote it, unbiased.  Chapter 12 shows what the log says of these.
+DATA_SHEET = {"speed_std": 0.05, "turn_std": 0.02, "range_std": 0.5}  # m/s, rad/s, m
+START_STD = (0.1, 0.1, 0.05)  # the filter's doubt about a start it is told: m, m, rad
+SCALE_STD = 0.1  # the doubt about the radio's scale when the filter estimates it, about its guess of 1
+INSIDE = 9.0  # a position NEES at most this: the truth inside the 3-sigma ellipse (chapters 6 and 10)
+
+
+@dataclass(frozen=True)
+class RangeRun(Record):
+    """An EKF over a log, measured against its ground truth.
+
+    Rows ``k = 0 .. K`` are poses: row 0 the start, row k after odometry step k-1 and the ranges that arrived
+    during it.  The state is the pose ``[x, y, theta]``, with the radio's scale ``s`` as a fourth entry when
+    the filter estimates it.  Ranges ``i = 0 .. M-1`` are the log's, in time order.
+    """
+
+    log: str  #: the log's name ("Plaza1", "Plaza2")
+    t: np.ndarray  #: (K + 1,) time of each pose (s)
+    truth: np.ndarray  #: (K + 1, 3) the log's ground truth [x, y, heading]
+    controls: np.ndarray  #: (K + 1, 3) [V, omega, dt] of the step into each pose (m/s, rad/s, s); row 0 zeros
+    mu_bar: np.ndarray  #: (K + 1, n) predicted mean, before the step's ranges; row 0 the start
+    Sig_bar: np.ndarray  #: (K + 1, n, n) predicted covariance
+    mu: np.ndarray  #: (K + 1, n) estimate after the step's ranges
+    Sig: np.ndarray  #: (K + 1, n, n) its covariance
+    step: np.ndarray  #: (M,) the pose row after whose prediction each range was used or refused
+    beacon: np.ndarray  #: (M,) the beacon of each range (a row of ``beacons``)
+    z: np.ndarray  #: (M,) the range read (m)
+    distance: np.ndarray  #: (M,) the distance to the beacon at the filter's mean just before the range (m)
+    z_hat: np.ndarray  #: (M,) the range the filter predicted: that distance times its scale (m)
+    S: np.ndarray  #: (M,) the innovation variance H Sig H^T + Q of each range (m^2)
+    used: np.ndarray  #: (M,) bool: the range was used (inside the gate, if any)
+    beacons: np.ndarray  #: (B, 2) the beacons (m)
+    error: np.ndarray  #: (K + 1,) distance between the estimated and the true position (m)
+    nees: np.ndarray  #: (K + 1,) position NEES: 2 on average for an honest filter
+    speed_std: float  #: the speed noise the filter assumes (m/s)
+    turn_std: float  #: the turn-rate noise it assumes (rad/s)
+    range_std: float  #: the range noise it assumes (m)
+    scale: float | str  #: the radio's scale it assumes, or "online": estimated as the fourth state
+    gate: float | None  #: the validation gate (standard deviations), or None: every range used
+
+    @property
+    def innovation(self) -> np.ndarray:
+        """(M,) each range minus the range the filter predicted, z - h(mu_bar) (m)."""
+        return self.z - self.z_hat
+
+    @property
+    def nis(self) -> np.ndarray:
+        """(M,) normalised innovation squared y^2 / S: 1 on average when the filter's noise is honest."""
+        return self.innovation**2 / self.S
+
+    @property
+    def inside(self) -> np.ndarray:
+        """(K + 1,) bool: the true position lies inside the 3-sigma ellipse."""
+        return self.nees <= INSIDE
+
+    def summary(self) -> dict:
+        """The run in four numbers: mean and 95th-percentile position error (m), the share of poses inside the
+        3-sigma ellipse, and the mean position NEES (2 when honest)."""
+        return {
+            "mean_error": float(self.error.mean()),
+            "p95_error": float(np.percentile(self.error, 95)),
+            "inside": float(self.inside.mean()),
+            "mean_nees": float(self.nees.mean()),
+        }
+
+    def fitted_scale(self) -> float:
+        """The radio's scale the innovations point to, no ground truth needed: the least-squares ``s`` of
+        z ≈ s d over the ranges used, d the distance the filter predicted for each."""
+        z, d = self.z[self.used], self.distance[self.used]
+        return float(z @ d / (d @ d))
+
+
+def _settings(log, speed_std, turn_std, range_std, scale, gate, start, steps) -> tuple:
+    from ..data import PlazaLog  # here, not above: kfcourse.data builds its record from kfcourse.sim's
+
+    if not isinstance(log, PlazaLog):
+        raise ValueError(f"log must be a PlazaLog (kf.data.load_plaza), got {type(log).__name__}")
+    speed_std = v.positive(speed_std, "speed_std", "a standard deviation", "m/s")
+    turn_std = v.positive(turn_std, "turn_std", "a standard deviation", "rad/s")
+    range_std = v.positive(range_std, "range_std", "a standard deviation", "m")
+    if not (isinstance(scale, str) and scale == "online"):
+        scale = v.positive(scale, "scale", 'a scale (or "online")')
+    gate = None if gate is None else v.positive(gate, "gate", "a distance", "standard deviations")
+    start = None if start is None else v.vector(start, "start", 3)
+    K = len(log.distance)
+    steps = K if steps is None else v.whole(steps, "steps", 1)
+    if steps > K:
+        raise ValueError(f"steps must be at most {K}, the log's odometry steps; got {steps}")
+    return speed_std, turn_std, range_std, scale, gate, start, steps
+
+
+def range_localize(
+    log: PlazaLog,
+    *,
+    speed_std: float = DATA_SHEET["speed_std"],
+    turn_std: float = DATA_SHEET["turn_std"],
+    range_std: float = DATA_SHEET["range_std"],
+    scale=1.0,
+    gate: float | None = None,
+    start=None,
+    steps: int | None = None,
+) -> RangeRun:
+    r"""Follow a real robot's log with the course's EKF: odometry to predict, ranges to beacons to update.
+
+    Predict (chapter 8): the unicycle with the step's speed and turn rate, its R the odometry noise
+    :math:`M = \mathrm{diag}(\sigma_V^2, \sigma_\omega^2)` mapped into the pose (``process_noise_of_odometry``).
+    Update (chapter 12), once per range that arrived during the step: :math:`h = s\,\lVert p - b\rVert`, its
+    Jacobian, :math:`Q = \sigma_r^2`; with a ``gate``, a range whose innovation is more than ``gate``
+    standard deviations off is refused (chapter 8).  With ``scale="online"`` the state is
+    ``[x, y, theta, s]``: ``s`` starts at 1 with standard deviation :data:`SCALE_STD` and is never moved by the
+    motion, only by the ranges (``scaled_range``).  Introduced in chapter 12.
+
+    Parameters
+    ----------
+    log : PlazaLog
+        :func:`kfcourse.data.load_plaza`.
+    speed_std, turn_std, range_std : float
+        The noise the filter assumes: odometry speed (m/s), turn rate (rad/s), range (m); by default
+        :data:`DATA_SHEET`'s.
+    scale : float or "online"
+        The radio's scale the filter assumes (1: it reads true distances), or ``"online"`` to estimate it.
+    gate : float, optional
+        Validation gate in standard deviations (> 0); ``None`` uses every range.
+    start : array_like, shape (3,), optional
+        The filter's mean at the start (its covariance :data:`START_STD`); by default the true start.
+    steps : int, optional
+        Follow only the first ``steps`` odometry steps (>= 1); by default the whole log.
+
+    Returns
+    -------
+    RangeRun
+    """
+    speed_std, turn_std, range_std, scale, gate, start, steps = _settings(
+        log, speed_std, turn_std, range_std, scale, gate, start, steps
+    )
+    online = scale == "online"
+    pose0 = log.truth[0] if start is None else start
+    mu0 = np.append(pose0, 1.0) if online else np.array(pose0, dtype=float)
+    Sig0 = np.diag(np.square([*START_STD, SCALE_STD] if online else START_STD))
+    M, Q = np.diag([speed_std**2, turn_std**2]), np.array([[range_std**2]])
+    track = _follow(log, steps, mu0, Sig0, M, Q, scale, gate)
+    truth, mus, Sigs = log.truth[: steps + 1], track["mu"], track["Sig"]
+    return RangeRun(
+        log=log.name,
+        t=log.t_truth[: steps + 1],
+        truth=truth,
+        controls=track["controls"],
+        mu_bar=track["mu_bar"],
+        Sig_bar=track["Sig_bar"],
+        mu=mus,
+        Sig=Sigs,
+        step=track["step"],
+        beacon=log.beacon[track["ranges"]],
+        z=log.range[track["ranges"]],
+        distance=track["distance"],
+        z_hat=track["z_hat"],
+        S=track["S"],
+        used=track["used"],
+        beacons=log.beacons,
+        error=np.hypot(*(truth[:, :2] - mus[:, :2]).T),
+        nees=nees(truth[:, :2], mus[:, :2], Sigs[:, :2, :2]),
+        speed_std=speed_std,
+        turn_std=turn_std,
+        range_std=range_std,
+        scale=scale,
+        gate=gate,
+    )
+
+
+def _follow(log, steps: int, mu, Sig, M, Q, scale, gate) -> dict:
+    """The EKF over the first ``steps`` odometry steps of ``log`` from ``mu``, ``Sig``: at each step, predict with
+    the odometry, then update with every range of the step, one at a time, each through the gate if any."""
+    online = scale == "online"
+    n = mu.size
+    controls = np.zeros((steps + 1, 3))
+    controls[1:, :2], controls[1:, 2] = log.controls()[:steps], log.dt[:steps]
+    mu_bar, Sig_bar = np.empty((steps + 1, n)), np.empty((steps + 1, n, n))
+    mus, Sigs = np.empty_like(mu_bar), np.empty_like(Sig_bar)
+    mu_bar[0], Sig_bar[0], mus[0], Sigs[0] = mu, Sig, mu, Sig
+    g, G = _motion(online)
+    ranges = np.flatnonzero(log.t_range <= log.t_truth[steps])  # the ranges that arrived by the last step
+    step = np.searchsorted(log.t_truth, log.t_range[ranges], side="left").clip(1, steps)  # after which predict
+    distance, z_hat, S = np.empty(ranges.size), np.empty(ranges.size), np.empty(ranges.size)
+    used = np.zeros(ranges.size, dtype=bool)
+    i = 0
+    for k in range(1, steps + 1):
+        c = controls[k]
+        R = np.zeros((n, n))
+        R[:3, :3] = process_noise_of_odometry(mu[:3], c[:2], c[2], M)  # the odometry noise, in the pose
+        mu, Sig = ekf_predict(mu, Sig, c, g, G, R)  # 1. predict with the odometry
+        mu_bar[k], Sig_bar[k] = mu, Sig
+        while i < ranges.size and step[i] == k:  # 2. every range of the step, one at a time
+            b = log.beacons[log.beacon[ranges[i]]]
+            h, H = _reading(online, scale, b)
+            z = log.range[ranges[i] : ranges[i] + 1]
+            H_t = H(mu)
+            distance[i] = range_only(mu, b)[0]
+            z_hat[i], S[i] = h(mu)[0], (H_t @ Sig @ H_t.T + Q)[0, 0]  # predicted range, innovation variance
+            if gate is None or mahalanobis(z - z_hat[i : i + 1], [[S[i]]]) <= gate:  # 3. the gate
+                mu, Sig = ekf_update(mu, Sig, z, h, H, Q)  # 4. update with the range
+                mu[2] = wrap_angle(mu[2])
+                used[i] = True
+            i += 1
+        mus[k], Sigs[k] = mu, Sig
+    return {"controls": controls, "mu_bar": mu_bar, "Sig_bar": Sig_bar, "mu": mus, "Sig": Sigs, "ranges": ranges,
+            "step": step, "distance": distance, "z_hat": z_hat, "S": S, "used": used}  # fmt: skip
+
+
+def _motion(online: bool):
+    """``g(x, c)`` and ``G(x, c)`` of the unicycle for a control ``c = [V, omega, dt]``; with the scale as a
+    fourth state (``online``), the scale rides along unchanged: g = [unicycle(pose), s], G = diag(G_pose, 1)."""
+
+    def g(x, c):
+        pose = unicycle(x[:3], c[:2], c[2])
+        return np.append(pose, x[3:]) if online else pose
+
+    def G(x, c):
+        J = np.eye(x.size)
+        J[:3, :3] = unicycle_jacobian(x[:3], c[:2], c[2])
+        return J
+
+    return g, G
+
+
+def _reading(online: bool, scale, b):
+    """``h`` and ``H`` of a range to beacon ``b``: s r with the assumed scale, or with the estimated one."""
+    if online:
+        return (lambda x: scaled_range(x, b)), (lambda x: scaled_range_jacobian(x, b))
+    return (lambda x: scale * range_only(x, b)), (lambda x: scale * range_only_jacobian(x, b))
+
+
+def smoothed(run: RangeRun) -> RangeRun:
+    """The run afterwards: :func:`~kfcourse.ekf_rts_smoother` over its predictions and estimates, the same
+    record with the smoothed means and covariances as ``mu`` and ``Sig`` (and its error and NEES).
+    Introduced in chapter 12."""
+    if not isinstance(run, RangeRun):
+        raise ValueError(f"run must be a RangeRun (range_localize), got {type(run).__name__}")
+    _, G = _motion(run.scale == "online")
+    residual = pose_residual  # a - b, the heading difference wrapped; the scale, if any, a plain difference
+    if run.mu.shape[1] == 4:
+        residual = lambda a, b: np.append(pose_residual(a[:3], b[:3]), a[3] - b[3])  # noqa: E731
+    mu_s, Sig_s = ekf_rts_smoother(run.mu, run.Sig, run.mu_bar, run.Sig_bar, G, run.controls, residual)
+    fields = {name: getattr(run, name) for name in run.__dataclass_fields__}
+    fields.update(
+        mu=mu_s,
+        Sig=Sig_s,
+        error=np.hypot(*(run.truth[:, :2] - mu_s[:, :2]).T),
+        nees=nees(run.truth[:, :2], mu_s[:, :2], Sig_s[:, :2, :2]),
+    )
+    return RangeRun(**fields)
