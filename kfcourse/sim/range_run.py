@@ -19,7 +19,9 @@ from .. import _validate as v
 from ..filters.association import mahalanobis
 from ..filters.ekf import ekf_predict, ekf_update
 from ..filters.smoother import ekf_rts_smoother
+from ..filters.ukf import ukf_predict, ukf_update
 from ..models import (
+    pose_mean,
     pose_residual,
     range_only,
     range_only_jacobian,
@@ -29,7 +31,7 @@ from ..models import (
     unicycle_jacobian,
     wrap_angle,
 )
-from .loop_filters import process_noise_of_odometry
+from .loop_filters import UKF_LAM, process_noise_of_odometry
 from .records import Record
 from .scores import nees
 
@@ -41,6 +43,7 @@ if TYPE_CHECKING:
 DATA_SHEET = {"speed_std": 0.05, "turn_std": 0.02, "range_std": 0.5}  # m/s, rad/s, m
 START_STD = (0.1, 0.1, 0.05)  # the filter's doubt about a start it is told: m, m, rad
 SCALE_STD = 0.1  # the doubt about the radio's scale when the filter estimates it, about its guess of 1
+FILTERS = ("ekf", "ukf")
 INSIDE = 9.0  # a position NEES at most this: the truth inside the 3-sigma ellipse (chapters 6 and 10)
 
 
@@ -54,6 +57,7 @@ class RangeRun(Record):
     """
 
     log: str  #: the log's name ("Plaza1", "Plaza2")
+    filter: str  #: "ekf" or "ukf"
     t: np.ndarray  #: (K + 1,) time of each pose (s)
     truth: np.ndarray  #: (K + 1, 3) the log's ground truth [x, y, heading]
     controls: np.ndarray  #: (K + 1, 3) [V, omega, dt] of the step into each pose (m/s, rad/s, s); row 0 zeros
@@ -109,11 +113,13 @@ class RangeRun(Record):
         return float(z @ d / (d @ d))
 
 
-def _settings(log, speed_std, turn_std, range_std, scale, gate, start, steps) -> tuple:
+def _settings(log, filter, speed_std, turn_std, range_std, scale, gate, start, start_std, steps) -> tuple:
     from ..data import PlazaLog  # here, not above: kfcourse.data builds its record from kfcourse.sim's
 
     if not isinstance(log, PlazaLog):
         raise ValueError(f"log must be a PlazaLog (kf.data.load_plaza), got {type(log).__name__}")
+    if not isinstance(filter, str) or filter not in FILTERS:
+        raise ValueError(f"filter must be one of {FILTERS}, got {filter!r}")
     speed_std = v.positive(speed_std, "speed_std", "a standard deviation", "m/s")
     turn_std = v.positive(turn_std, "turn_std", "a standard deviation", "rad/s")
     range_std = v.positive(range_std, "range_std", "a standard deviation", "m")
@@ -121,22 +127,27 @@ def _settings(log, speed_std, turn_std, range_std, scale, gate, start, steps) ->
         scale = v.positive(scale, "scale", 'a scale (or "online")')
     gate = None if gate is None else v.positive(gate, "gate", "a distance", "standard deviations")
     start = None if start is None else v.vector(start, "start", 3)
+    start_std = v.vector(start_std, "start_std", 3)
+    if not np.all(start_std > 0):
+        raise ValueError(f"start_std must hold standard deviations > 0 (m, m, rad), got {start_std.tolist()}")
     K = len(log.distance)
     steps = K if steps is None else v.whole(steps, "steps", 1)
     if steps > K:
         raise ValueError(f"steps must be at most {K}, the log's odometry steps; got {steps}")
-    return speed_std, turn_std, range_std, scale, gate, start, steps
+    return filter, speed_std, turn_std, range_std, scale, gate, start, start_std, steps
 
 
 def range_localize(
     log: PlazaLog,
     *,
+    filter: str = "ekf",
     speed_std: float = DATA_SHEET["speed_std"],
     turn_std: float = DATA_SHEET["turn_std"],
     range_std: float = DATA_SHEET["range_std"],
     scale=1.0,
     gate: float | None = None,
     start=None,
+    start_std=START_STD,
     steps: int | None = None,
 ) -> RangeRun:
     r"""Follow a real robot's log with the course's EKF: odometry to predict, ranges to beacons to update.
@@ -153,6 +164,9 @@ def range_localize(
     ----------
     log : PlazaLog
         :func:`kfcourse.data.load_plaza`.
+    filter : {"ekf", "ukf"}
+        The course's EKF (chapter 7) or UKF (chapter 9, λ = 0, headings averaged on the circle).  Either
+        gates, and records each range's innovation variance, with the linearized S (chapter 8).
     speed_std, turn_std, range_std : float
         The noise the filter assumes: odometry speed (m/s), turn rate (rad/s), range (m); by default
         :data:`DATA_SHEET`'s.
@@ -161,7 +175,10 @@ def range_localize(
     gate : float, optional
         Validation gate in standard deviations (> 0); ``None`` uses every range.
     start : array_like, shape (3,), optional
-        The filter's mean at the start (its covariance :data:`START_STD`); by default the true start.
+        The filter's mean at the start; by default the true start.
+    start_std : array_like, shape (3,)
+        The filter's standard deviations about its start (m, m, rad), by default :data:`START_STD`: a start it
+        is told.  A start it does not know needs tens of metres and pi.
     steps : int, optional
         Follow only the first ``steps`` odometry steps (>= 1); by default the whole log.
 
@@ -169,32 +186,26 @@ def range_localize(
     -------
     RangeRun
     """
-    speed_std, turn_std, range_std, scale, gate, start, steps = _settings(
-        log, speed_std, turn_std, range_std, scale, gate, start, steps
+    filter, speed_std, turn_std, range_std, scale, gate, start, start_std, steps = _settings(
+        log, filter, speed_std, turn_std, range_std, scale, gate, start, start_std, steps
     )
     online = scale == "online"
     pose0 = log.truth[0] if start is None else start
     mu0 = np.append(pose0, 1.0) if online else np.array(pose0, dtype=float)
-    Sig0 = np.diag(np.square([*START_STD, SCALE_STD] if online else START_STD))
+    Sig0 = np.diag(np.square([*start_std, SCALE_STD] if online else start_std))
     M, Q = np.diag([speed_std**2, turn_std**2]), np.array([[range_std**2]])
-    track = _follow(log, steps, mu0, Sig0, M, Q, scale, gate)
+    track = _follow(log, steps, mu0, Sig0, _steps(filter, scale, M, Q), gate)
     truth, mus, Sigs = log.truth[: steps + 1], track["mu"], track["Sig"]
+    shared = ("controls", "mu_bar", "Sig_bar", "step", "distance", "z_hat", "S", "used")
     return RangeRun(
         log=log.name,
+        filter=filter,
         t=log.t_truth[: steps + 1],
         truth=truth,
-        controls=track["controls"],
-        mu_bar=track["mu_bar"],
-        Sig_bar=track["Sig_bar"],
         mu=mus,
         Sig=Sigs,
-        step=track["step"],
         beacon=log.beacon[track["ranges"]],
         z=log.range[track["ranges"]],
-        distance=track["distance"],
-        z_hat=track["z_hat"],
-        S=track["S"],
-        used=track["used"],
         beacons=log.beacons,
         error=np.hypot(*(truth[:, :2] - mus[:, :2]).T),
         nees=nees(truth[:, :2], mus[:, :2], Sigs[:, :2, :2]),
@@ -203,41 +214,36 @@ def range_localize(
         range_std=range_std,
         scale=scale,
         gate=gate,
+        **{name: track[name] for name in shared},
     )
 
 
-def _follow(log, steps: int, mu, Sig, M, Q, scale, gate) -> dict:
-    """The EKF over the first ``steps`` odometry steps of ``log`` from ``mu``, ``Sig``: at each step, predict with
-    the odometry, then update with every range of the step, one at a time, each through the gate if any."""
-    online = scale == "online"
+def _follow(log, steps: int, mu, Sig, filter_steps: tuple, gate) -> dict:
+    """The filter over the first ``steps`` odometry steps of ``log`` from ``mu``, ``Sig``: at each step, predict
+    with the odometry, then update with every range of the step, one at a time, each through the gate if any.
+    ``filter_steps`` is ``(predict, update, reading)`` of :func:`_steps`."""
+    predict, update, reading = filter_steps
     n = mu.size
     controls = np.zeros((steps + 1, 3))
     controls[1:, :2], controls[1:, 2] = log.controls()[:steps], log.dt[:steps]
     mu_bar, Sig_bar = np.empty((steps + 1, n)), np.empty((steps + 1, n, n))
     mus, Sigs = np.empty_like(mu_bar), np.empty_like(Sig_bar)
     mu_bar[0], Sig_bar[0], mus[0], Sigs[0] = mu, Sig, mu, Sig
-    g, G = _motion(online)
     ranges = np.flatnonzero(log.t_range <= log.t_truth[steps])  # the ranges that arrived by the last step
     step = np.searchsorted(log.t_truth, log.t_range[ranges], side="left").clip(1, steps)  # after which predict
     distance, z_hat, S = np.empty(ranges.size), np.empty(ranges.size), np.empty(ranges.size)
     used = np.zeros(ranges.size, dtype=bool)
     i = 0
     for k in range(1, steps + 1):
-        c = controls[k]
-        R = np.zeros((n, n))
-        R[:3, :3] = process_noise_of_odometry(mu[:3], c[:2], c[2], M)  # the odometry noise, in the pose
-        mu, Sig = ekf_predict(mu, Sig, c, g, G, R)  # 1. predict with the odometry
+        mu, Sig = predict(mu, Sig, controls[k])  # 1. predict with the odometry
         mu_bar[k], Sig_bar[k] = mu, Sig
         while i < ranges.size and step[i] == k:  # 2. every range of the step, one at a time
             b = log.beacons[log.beacon[ranges[i]]]
-            h, H = _reading(online, scale, b)
             z = log.range[ranges[i] : ranges[i] + 1]
-            H_t = H(mu)
             distance[i] = range_only(mu, b)[0]
-            z_hat[i], S[i] = h(mu)[0], (H_t @ Sig @ H_t.T + Q)[0, 0]  # predicted range, innovation variance
+            z_hat[i], S[i] = reading(mu, Sig, b)  # predicted range, innovation variance
             if gate is None or mahalanobis(z - z_hat[i : i + 1], [[S[i]]]) <= gate:  # 3. the gate
-                mu, Sig = ekf_update(mu, Sig, z, h, H, Q)  # 4. update with the range
-                mu[2] = wrap_angle(mu[2])
+                mu, Sig = update(mu, Sig, z, b)  # 4. update with the range
                 used[i] = True
             i += 1
         mus[k], Sigs[k] = mu, Sig
@@ -245,13 +251,59 @@ def _follow(log, steps: int, mu, Sig, M, Q, scale, gate) -> dict:
             "step": step, "distance": distance, "z_hat": z_hat, "S": S, "used": used}  # fmt: skip
 
 
+def _steps(filter: str, scale, M, Q) -> tuple:
+    """``predict(mu, Sig, c)``, ``update(mu_bar, Sig_bar, z, b)`` and ``reading(mu_bar, Sig_bar, b)`` of the
+    course's EKF or UKF for a control ``c = [V, omega, dt]`` and a range to beacon ``b``; ``reading`` is the
+    predicted range h(mu_bar) and its linearized innovation variance H Sig_bar H^T + Q."""
+    online = scale == "online"
+    g, G = _motion(online)
+    residual, mean = _state_residual(online), _state_mean(online)
+
+    def predict(mu, Sig, c):
+        R = np.zeros((mu.size, mu.size))
+        R[:3, :3] = process_noise_of_odometry(mu[:3], c[:2], c[2], M)  # the odometry noise, in the pose
+        if filter == "ekf":
+            return ekf_predict(mu, Sig, c, g, G, R)
+        return ukf_predict(mu, Sig, c, g, R, UKF_LAM, residual, mean)
+
+    def update(mu_bar, Sig_bar, z, b):
+        h, H = _reading(online, scale, b)
+        if filter == "ekf":
+            mu, Sig = ekf_update(mu_bar, Sig_bar, z, h, H, Q)
+        else:
+            mu, Sig = ukf_update(mu_bar, Sig_bar, z, h, Q, UKF_LAM, None, None, residual)
+        mu[2] = wrap_angle(mu[2])  # the update may push the heading past pi
+        return mu, Sig
+
+    def reading(mu_bar, Sig_bar, b):
+        h, H = _reading(online, scale, b)
+        H_t = H(mu_bar)
+        return h(mu_bar)[0], (H_t @ Sig_bar @ H_t.T + Q)[0, 0]
+
+    return predict, update, reading
+
+
+def _state_residual(online: bool):
+    """``a - b`` for states (or stacks of them): the heading wrapped, the scale a plain difference."""
+    if not online:
+        return pose_residual
+    return lambda a, b: np.concatenate([pose_residual(a[..., :3], b[..., :3]), (a[..., 3:] - b[..., 3:])], axis=-1)
+
+
+def _state_mean(online: bool):
+    """The weighted mean of states, the heading on the circle (the scale, if any, a plain mean)."""
+    if not online:
+        return pose_mean
+    return lambda X, w: np.append(pose_mean(X[:, :3], w), w @ X[:, 3])
+
+
 def _motion(online: bool):
     """``g(x, c)`` and ``G(x, c)`` of the unicycle for a control ``c = [V, omega, dt]``; with the scale as a
     fourth state (``online``), the scale rides along unchanged: g = [unicycle(pose), s], G = diag(G_pose, 1)."""
 
-    def g(x, c):
-        pose = unicycle(x[:3], c[:2], c[2])
-        return np.append(pose, x[3:]) if online else pose
+    def g(x, c):  # one state, or the UKF's stack of sigma points
+        pose = unicycle(x[..., :3], c[:2], c[2])
+        return np.concatenate([pose, x[..., 3:]], axis=-1) if online else pose
 
     def G(x, c):
         J = np.eye(x.size)
@@ -272,13 +324,12 @@ def smoothed(run: RangeRun) -> RangeRun:
     """The run afterwards: :func:`~kfcourse.ekf_rts_smoother` over its predictions and estimates, the same
     record with the smoothed means and covariances as ``mu`` and ``Sig`` (and its error and NEES).
     Introduced in chapter 12."""
-    if not isinstance(run, RangeRun):
-        raise ValueError(f"run must be a RangeRun (range_localize), got {type(run).__name__}")
-    _, G = _motion(run.scale == "online")
-    residual = pose_residual  # a - b, the heading difference wrapped; the scale, if any, a plain difference
-    if run.mu.shape[1] == 4:
-        residual = lambda a, b: np.append(pose_residual(a[:3], b[:3]), a[3] - b[3])  # noqa: E731
-    mu_s, Sig_s = ekf_rts_smoother(run.mu, run.Sig, run.mu_bar, run.Sig_bar, G, run.controls, residual)
+    if not isinstance(run, RangeRun) or run.filter != "ekf":
+        got = f"a {run.filter.upper()} run" if isinstance(run, RangeRun) else type(run).__name__
+        raise ValueError(f"run must be an EKF's RangeRun (range_localize), got {got}")
+    online = run.scale == "online"
+    _, G = _motion(online)
+    mu_s, Sig_s = ekf_rts_smoother(run.mu, run.Sig, run.mu_bar, run.Sig_bar, G, run.controls, _state_residual(online))
     fields = {name: getattr(run, name) for name in run.__dataclass_fields__}
     fields.update(
         mu=mu_s,

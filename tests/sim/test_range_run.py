@@ -48,6 +48,24 @@ def test_the_scale_as_a_fourth_state_is_learned_from_the_ranges(plaza2):
     assert run.summary()["mean_error"] < 0.4
 
 
+def test_the_ukf_follows_the_log_as_closely_as_the_ekf(plaza2):
+    """A range is nearly linear at tens of metres: the UKF's sigma points find what the EKF's tangent does."""
+    ekf = kf.sim.range_localize(plaza2, scale=1.07).summary()
+    ukf = kf.sim.range_localize(plaza2, filter="ukf", scale=1.07).summary()
+    assert abs(ukf["mean_error"] - ekf["mean_error"]) < 0.05 and abs(ukf["inside"] - ekf["inside"]) < 0.05
+
+
+def test_from_a_start_it_is_not_told_the_ekf_finds_the_robot_on_plaza2(plaza2):
+    for guess in ([0.0, 0.0, 0.0], [-40.0, 40.0, 1.0], [10.0, 10.0, -2.0]):
+        run = kf.sim.range_localize(plaza2, scale=1.07, start=guess, start_std=(30.0, 30.0, 3.0))
+        assert np.median(run.error[1000:]) < 0.5
+
+
+def test_only_an_ekf_run_is_smoothed(plaza2):
+    with pytest.raises(ValueError, match=r"^run must be an EKF's RangeRun"):
+        kf.sim.smoothed(kf.sim.range_localize(plaza2, filter="ukf", steps=10))
+
+
 def test_the_gate_refuses_a_few_ranges(plaza2):
     run = kf.sim.range_localize(plaza2, scale=1.07, gate=3.0)
     refused = 1.0 - run.used.mean()
