@@ -253,6 +253,8 @@ EXAMPLES: dict[str, dict] = {
     ),
     "kf.sim.smoothed": dict(run=RANGES),
     "kf.sim.start_cell": dict(rng=RNG, n_cells=12),
+    "kf.sim.tuning_score": dict(speed_std=0.05, turn_std=0.02, range_std=0.5, scale=1.07, gate=3.0, log="Plaza2"),
+    "kf.sim.verdict": dict(mean_nees=2.0, band=(1.0, 4.0)),
     # ---------------------------------------------------------------- kf.data: the logs of real robots
     "kf.data.load_plaza": dict(name="Plaza1"),
     # ---------------------------------------------------------------- kf.demos: each builds a figure
@@ -326,6 +328,7 @@ ACCEPTED = {
     ("kf.sim.localize_with_step", "gate", "inf"): "gate=np.inf is no gate: every reading is used",
     ("kf.sim.localize_with_step", "name", "unknown"): "name labels the step in messages: any text will do",
     ("kf.mvn_pdf", "x", "shape"): "x may be any stack of points, shape (..., n)",
+    ("kf.sim.verdict", "mean_nees", "inf"): "the mean NEES of a flat ellipse the truth left: over-confident",
 }
 
 

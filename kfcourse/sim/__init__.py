@@ -26,7 +26,7 @@ from .particle_lap import ParticleRun, localized, particle_loop
 from .range_run import DATA_SHEET, RangeRun, range_localize, smoothed
 from .robot import DEFAULT_LANDMARKS, RobotRun, loop_controls, readings, simulate_robot
 from .scan import AssociationScan, GatedUpdate, association_scan, gated_update
-from .scores import nees, nees_band
+from .scores import nees, nees_band, verdict
 from .student_step import localize_with_step
 from .target import (
     TargetEstimates,
@@ -38,11 +38,13 @@ from .target import (
     simulate_target,
     simulate_tracks,
 )
+from .tuning import NEES_BAND, TuningScore, tuning_score
 from .walk import simulate_walk
 
 __all__ = [
     "DATA_SHEET",
     "DEFAULT_LANDMARKS",
+    "NEES_BAND",
     "TWO_LANDMARKS",
     "AssociationScan",
     "EkfRun",
@@ -61,6 +63,7 @@ __all__ = [
     "TargetRun",
     "Track",
     "TrackBatch",
+    "TuningScore",
     "association_scan",
     "bias_drift",
     "door_likelihood",
@@ -101,4 +104,6 @@ __all__ = [
     "simulate_walk",
     "smoothed",
     "start_cell",
+    "tuning_score",
+    "verdict",
 ]

@@ -8,7 +8,7 @@ from dataclasses import dataclass
 import numpy as np
 
 from .records import Record, text_table
-from .scores import HONEST_NEES
+from .scores import verdict
 
 
 @dataclass(frozen=True)
@@ -81,8 +81,7 @@ class LoopRun(Record):
         """
         k = len(self.t) - 1 if k is None else int(k)
         mean = float(self.nees[: k + 1].mean())
-        low, high = HONEST_NEES
-        return mean, "timid" if mean < low else "over-confident" if mean > high else "honest"
+        return mean, verdict(mean)
 
     def table(self, steps) -> str:
         """One line per step of ``steps``: readings used and rejected, error, 1-sigma area before and after."""

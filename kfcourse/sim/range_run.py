@@ -33,7 +33,7 @@ from ..models import (
 )
 from .loop_filters import UKF_LAM, process_noise_of_odometry
 from .records import Record
-from .scores import nees
+from .scores import nees, verdict
 
 if TYPE_CHECKING:
     from ..data import PlazaLog
@@ -97,13 +97,14 @@ class RangeRun(Record):
         return self.nees <= INSIDE
 
     def summary(self) -> dict:
-        """The run in four numbers: mean and 95th-percentile position error (m), the share of poses inside the
-        3-sigma ellipse, and the mean position NEES (2 when honest)."""
+        """The run in five figures: mean and 95th-percentile position error (m), the share of poses inside the
+        3-sigma ellipse, the mean position NEES (2 when honest) and what it says (:func:`~kfcourse.sim.verdict`)."""
         return {
             "mean_error": float(self.error.mean()),
             "p95_error": float(np.percentile(self.error, 95)),
             "inside": float(self.inside.mean()),
             "mean_nees": float(self.nees.mean()),
+            "verdict": verdict(float(self.nees.mean())),
         }
 
     def fitted_scale(self) -> float:

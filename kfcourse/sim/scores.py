@@ -67,6 +67,19 @@ def _odd_shape(truth: tuple, mu: tuple, Sig: tuple) -> str:
     return f"truth has shape {truth}, mu {mu} and Sig {Sig}: they must be (..., n), (..., n) and (..., n, n)"
 
 
+def verdict(mean_nees: float, band: tuple[float, float] = HONEST_NEES) -> str:
+    """What a mean NEES says of a filter: "honest" inside ``band`` (by default :data:`HONEST_NEES`, that of one
+    run's mean position NEES), "timid" below it (its ellipses larger than its errors), "over-confident" above it
+    (smaller).  A mean NEES of ``inf`` (a flat ellipse the truth left) is over-confident.  Introduced in chapter
+    6; chapters 10 and 12 read a whole run with it."""
+    if isinstance(mean_nees, bool) or not isinstance(mean_nees, int | float | np.number) or math.isnan(mean_nees):
+        raise ValueError(f"mean_nees must be a number >= 0 (inf for a flat ellipse), got {mean_nees!r}")
+    low, high = v.vector(band, "band", 2).tolist()
+    if not 0.0 <= low <= high:
+        raise ValueError(f"band must be (low, high) with 0 <= low <= high, got {(low, high)}")
+    return "timid" if mean_nees < low else "over-confident" if mean_nees > high else "honest"
+
+
 def nees_band(n_runs: int, dof: int, level: float = 0.95) -> tuple[float, float]:
     r"""The two-sided ``level`` band for the average NEES of ``n_runs`` honest filters.
 

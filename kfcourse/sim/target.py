@@ -27,7 +27,7 @@ from ..filters.batch import kf_step_batch
 from ..filters.kalman import kf_step
 from ..models import constant_velocity
 from .records import Record, read_only, text_table
-from .scores import FADE_TIME, nees, nees_band
+from .scores import FADE_TIME, nees, nees_band, verdict
 
 DT = 0.1  # s between readings
 SPEED = 2.0  # m/s, the target's constant speed
@@ -128,8 +128,7 @@ class TargetEstimates(Record):
         draws = max(round(nees_k.size * self.run.dt / FADE_TIME), 1)
         low, high = nees_band(draws, 2, level)
         mean_nees = float(nees_k.mean())
-        verdict = "timid" if mean_nees < low else "over-confident" if mean_nees > high else "honest"
-        return Honesty(mean_nees, low, high, draws, verdict)
+        return Honesty(mean_nees, low, high, draws, verdict(mean_nees, (low, high)))
 
 
 def roughness(xy) -> float:
