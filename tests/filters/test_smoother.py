@@ -88,6 +88,21 @@ def test_equals_the_exact_posterior_of_every_state_given_every_reading(n):
     assert_close(Sig_s, cov, rtol=1e-9, scale=np.abs(cov).max())
 
 
+@pytest.mark.parametrize("n", [1, 2])
+def test_agrees_with_filterpys_rts_smoother(n):
+    """filterpy's rts_smoother (its Q is the course's R, the process noise) on the same filtered run.  filterpy
+    predicts the mean as F x, with no control: the run has none."""
+    from filterpy.kalman import rts_smoother as filterpy_rts
+
+    case = {**linear_case(n), "u": np.zeros((6, 1))}
+    mu, Sig, mu_bar, Sig_bar = run_filter(**case)
+    T = len(mu)
+    x, P, _, _ = filterpy_rts(mu, Sig, [case["F"]] * T, [case["R"]] * T)
+    mu_s, Sig_s = kf.rts_smoother(mu, Sig, mu_bar, Sig_bar, case["F"])
+    assert_close(mu_s, x, rtol=1e-10, scale=np.abs(x).max())
+    assert_close(Sig_s, P, rtol=1e-10, scale=np.abs(P).max())
+
+
 def test_the_last_step_is_the_filters_and_no_step_is_less_sure():
     case = linear_case(2)
     mu, Sig, mu_bar, Sig_bar = run_filter(**case)
