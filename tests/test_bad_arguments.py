@@ -227,8 +227,8 @@ EXAMPLES: dict[str, dict] = {
     "kf.sim.process_noise": dict(dt=0.1, accel_var=1.0),
     "kf.sim.process_noise_of_odometry": dict(mu=POSE, u=ODOMETRY, dt=DT, M=M_ODO),
     "kf.sim.range_localize": dict(
-        log=PLAZA, filter="ekf", speed_std=0.05, turn_std=0.02, range_std=0.5, scale=1.07, gate=3.0, start=POSE,
-        start_std=[1.0, 1.0, 0.1], steps=5,
+        log=PLAZA, filter="ekf", speed_std=0.05, turn_std=0.02, noise_per="metre", range_std=0.5, scale=1.07,
+        gate=3.0, start=POSE, start_std=[1.0, 1.0, 0.1], steps=5,
     ),
     "kf.sim.read_door": dict(cell=3, doors=DOORS, reliability=0.9, rng=RNG),
     "kf.sim.readings": dict(

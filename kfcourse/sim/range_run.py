@@ -44,6 +44,7 @@ DATA_SHEET = {"speed_std": 0.05, "turn_std": 0.02, "range_std": 0.5}  # m/s, rad
 START_STD = (0.1, 0.1, 0.05)  # the filter's doubt about a start it is told: m, m, rad
 SCALE_STD = 0.1  # the doubt about the radio's scale when the filter estimates it, about its guess of 1
 FILTERS = ("ekf", "ukf")
+NOISE_PER = ("second", "metre")
 INSIDE = 9.0  # a position NEES at most this: the truth inside the 3-sigma ellipse (chapters 6 and 10)
 
 
@@ -75,8 +76,9 @@ class RangeRun(Record):
     beacons: np.ndarray  #: (B, 2) the beacons (m)
     error: np.ndarray  #: (K + 1,) distance between the estimated and the true position (m)
     nees: np.ndarray  #: (K + 1,) position NEES: 2 on average for an honest filter
-    speed_std: float  #: the speed noise the filter assumes (m/s)
-    turn_std: float  #: the turn-rate noise it assumes (rad/s)
+    speed_std: float  #: the speed noise the filter assumes (m/s; per metre driven: m per square-root metre)
+    turn_std: float  #: the turn-rate noise it assumes (rad/s; per metre driven: rad per square-root metre)
+    noise_per: str  #: "second": the odometry noise grows with time (chapter 8); "metre": with distance driven
     range_std: float  #: the range noise it assumes (m)
     scale: float | str  #: the radio's scale it assumes, or "online": estimated as the fourth state
     gate: float | None  #: the validation gate (standard deviations), or None: every range used
@@ -114,7 +116,7 @@ class RangeRun(Record):
         return float(z @ d / (d @ d))
 
 
-def _settings(log, filter, speed_std, turn_std, range_std, scale, gate, start, start_std, steps) -> tuple:
+def _settings(log, filter, speed_std, turn_std, noise_per, range_std, scale, gate, start, start_std, steps) -> tuple:
     from ..data import PlazaLog  # here, not above: kfcourse.data builds its record from kfcourse.sim's
 
     if not isinstance(log, PlazaLog):
@@ -123,6 +125,8 @@ def _settings(log, filter, speed_std, turn_std, range_std, scale, gate, start, s
         raise ValueError(f"filter must be one of {FILTERS}, got {filter!r}")
     speed_std = v.positive(speed_std, "speed_std", "a standard deviation", "m/s")
     turn_std = v.positive(turn_std, "turn_std", "a standard deviation", "rad/s")
+    if not isinstance(noise_per, str) or noise_per not in NOISE_PER:
+        raise ValueError(f"noise_per must be one of {NOISE_PER}, got {noise_per!r}")
     range_std = v.positive(range_std, "range_std", "a standard deviation", "m")
     if not (isinstance(scale, str) and scale == "online"):
         scale = v.positive(scale, "scale", 'a scale (or "online")')
@@ -135,7 +139,7 @@ def _settings(log, filter, speed_std, turn_std, range_std, scale, gate, start, s
     steps = K if steps is None else v.whole(steps, "steps", 1)
     if steps > K:
         raise ValueError(f"steps must be at most {K}, the log's odometry steps; got {steps}")
-    return filter, speed_std, turn_std, range_std, scale, gate, start, start_std, steps
+    return filter, speed_std, turn_std, noise_per, range_std, scale, gate, start, start_std, steps
 
 
 def range_localize(
@@ -144,6 +148,7 @@ def range_localize(
     filter: str = "ekf",
     speed_std: float = DATA_SHEET["speed_std"],
     turn_std: float = DATA_SHEET["turn_std"],
+    noise_per: str = "second",
     range_std: float = DATA_SHEET["range_std"],
     scale=1.0,
     gate: float | None = None,
@@ -154,7 +159,10 @@ def range_localize(
     r"""Follow a real robot's log with the course's EKF: odometry to predict, ranges to beacons to update.
 
     Predict (chapter 8): the unicycle with the step's speed and turn rate, its R the odometry noise
-    :math:`M = \mathrm{diag}(\sigma_V^2, \sigma_\omega^2)` mapped into the pose (``process_noise_of_odometry``).
+    :math:`M = \mathrm{diag}(\sigma_V^2, \sigma_\omega^2)` mapped into the pose (``process_noise_of_odometry``);
+    with ``noise_per="metre"`` the noise grows with the distance driven instead of with time, a variance of
+    :math:`\sigma^2 |d|` per step of length :math:`d = V\Delta t`: :math:`M = \mathrm{diag}(\sigma_V^2,
+    \sigma_\omega^2)\,|V| / \Delta t`.
     Update (chapter 12), once per range that arrived during the step: :math:`h = s\,\lVert p - b\rVert`, its
     Jacobian, :math:`Q = \sigma_r^2`; with a ``gate``, a range whose innovation is more than ``gate``
     standard deviations off is refused (chapter 8).  With ``scale="online"`` the state is
@@ -168,9 +176,13 @@ def range_localize(
     filter : {"ekf", "ukf"}
         The course's EKF (chapter 7) or UKF (chapter 9, λ = 0, headings averaged on the circle).  Either
         gates, and records each range's innovation variance, with the linearized S (chapter 8).
-    speed_std, turn_std, range_std : float
-        The noise the filter assumes: odometry speed (m/s), turn rate (rad/s), range (m); by default
-        :data:`DATA_SHEET`'s.
+    speed_std, turn_std : float
+        The odometry noise the filter assumes: speed (m/s) and turn rate (rad/s), or with
+        ``noise_per="metre"`` distance and turn per square-root metre driven; by default :data:`DATA_SHEET`'s.
+    noise_per : {"second", "metre"}
+        What the odometry noise grows with: time (chapter 8's M, the default) or the distance driven.
+    range_std : float
+        The range noise the filter assumes (m); by default :data:`DATA_SHEET`'s.
     scale : float or "online"
         The radio's scale the filter assumes (1: it reads true distances), or ``"online"`` to estimate it.
     gate : float, optional
@@ -187,15 +199,21 @@ def range_localize(
     -------
     RangeRun
     """
-    filter, speed_std, turn_std, range_std, scale, gate, start, start_std, steps = _settings(
-        log, filter, speed_std, turn_std, range_std, scale, gate, start, start_std, steps
+    filter, speed_std, turn_std, noise_per, range_std, scale, gate, start, start_std, steps = _settings(
+        log, filter, speed_std, turn_std, noise_per, range_std, scale, gate, start, start_std, steps
     )
     online = scale == "online"
     pose0 = log.truth[0] if start is None else start
     mu0 = np.append(pose0, 1.0) if online else np.array(pose0, dtype=float)
     Sig0 = np.diag(np.square([*start_std, SCALE_STD] if online else start_std))
     M, Q = np.diag([speed_std**2, turn_std**2]), np.array([[range_std**2]])
-    track = _follow(log, steps, mu0, Sig0, _steps(filter, scale, M, Q), gate)
+    track = _follow(log, steps, mu0, Sig0, _steps(filter, scale, M, Q, noise_per), gate)
+    settings = {"speed_std": speed_std, "turn_std": turn_std, "noise_per": noise_per, "range_std": range_std}
+    return _record(log, filter, steps, track, {**settings, "scale": scale, "gate": gate})
+
+
+def _record(log, filter: str, steps: int, track: dict, settings: dict) -> RangeRun:
+    """The run of :func:`_follow` as a record, measured against the log's ground truth."""
     truth, mus, Sigs = log.truth[: steps + 1], track["mu"], track["Sig"]
     shared = ("controls", "mu_bar", "Sig_bar", "step", "distance", "z_hat", "S", "used")
     return RangeRun(
@@ -210,11 +228,7 @@ def range_localize(
         beacons=log.beacons,
         error=np.hypot(*(truth[:, :2] - mus[:, :2]).T),
         nees=nees(truth[:, :2], mus[:, :2], Sigs[:, :2, :2]),
-        speed_std=speed_std,
-        turn_std=turn_std,
-        range_std=range_std,
-        scale=scale,
-        gate=gate,
+        **settings,
         **{name: track[name] for name in shared},
     )
 
@@ -252,7 +266,7 @@ def _follow(log, steps: int, mu, Sig, filter_steps: tuple, gate) -> dict:
             "step": step, "distance": distance, "z_hat": z_hat, "S": S, "used": used}  # fmt: skip
 
 
-def _steps(filter: str, scale, M, Q) -> tuple:
+def _steps(filter: str, scale, M, Q, noise_per: str) -> tuple:
     """``predict(mu, Sig, c)``, ``update(mu_bar, Sig_bar, z, b)`` and ``reading(mu_bar, Sig_bar, b)`` of the
     course's EKF or UKF for a control ``c = [V, omega, dt]`` and a range to beacon ``b``; ``reading`` is the
     predicted range h(mu_bar) and its linearized innovation variance H Sig_bar H^T + Q."""
@@ -262,7 +276,8 @@ def _steps(filter: str, scale, M, Q) -> tuple:
 
     def predict(mu, Sig, c):
         R = np.zeros((mu.size, mu.size))
-        R[:3, :3] = process_noise_of_odometry(mu[:3], c[:2], c[2], M)  # the odometry noise, in the pose
+        M_k = M if noise_per == "second" else M * abs(c[0]) / c[2]  # per metre: variance |d| s^2, d = V dt
+        R[:3, :3] = process_noise_of_odometry(mu[:3], c[:2], c[2], M_k)  # the odometry noise, in the pose
         if filter == "ekf":
             return ekf_predict(mu, Sig, c, g, G, R)
         return ukf_predict(mu, Sig, c, g, R, UKF_LAM, residual, mean)

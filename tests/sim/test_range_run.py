@@ -66,6 +66,19 @@ def test_only_an_ekf_run_is_smoothed(plaza2):
         kf.sim.smoothed(kf.sim.range_localize(plaza2, filter="ukf", steps=10))
 
 
+def test_noise_per_metre_driven_tuned_on_one_log_is_honest_on_the_other():
+    """Plaza2 drives three times as fast as Plaza1, in steps half as long: a noise per second tuned on Plaza1
+    is over-confident on Plaza2, the same noise per metre driven is honest on both."""
+    per_second = {"speed_std": 0.15, "turn_std": 0.02, "range_std": 0.5, "scale": "online"}
+    per_metre = {"speed_std": 0.05, "turn_std": 0.01, "range_std": 0.7, "scale": "online", "noise_per": "metre"}
+    logs = [kf.data.load_plaza(name) for name in kf.data.PLAZA_RUNS]
+    first, second = (kf.sim.range_localize(log, **per_second).summary() for log in logs)
+    assert first["verdict"] == "honest" and second["verdict"] == "over-confident"
+    for log in logs:
+        s = kf.sim.range_localize(log, **per_metre).summary()
+        assert s["verdict"] == "honest" and s["inside"] > 0.9 and s["mean_error"] < 0.4
+
+
 def test_the_gate_refuses_a_few_ranges(plaza2):
     run = kf.sim.range_localize(plaza2, scale=1.07, gate=3.0)
     refused = 1.0 - run.used.mean()
