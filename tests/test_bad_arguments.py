@@ -190,6 +190,9 @@ EXAMPLES: dict[str, dict] = {
     "kf.sim.bias_drift": dict(scale_error=0.01, distance=400.0),
     "kf.sim.door_likelihood": dict(doors=DOORS, saw_door=[True, False], reliability=0.9),
     "kf.sim.drift_sigma": dict(step_std=0.05, n=10),
+    "kf.sim.factor_graph": dict(
+        log=PLAZA, scale=1.07, range_std=0.5, odometry_std=(0.05, 0.05, 0.02), robust=False, steps=5, initial=RANGES.mu
+    ),
     "kf.sim.family_table": dict(seeds=[0], particle_counts=[10], runs=[]),
     "kf.sim.filter_target": dict(run=TARGET, R=R_CV, Q=Q_CV),
     "kf.sim.filter_tracks": dict(batch=BATCH, R=R_CV, Q=Q_CV),

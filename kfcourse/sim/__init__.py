@@ -5,6 +5,7 @@ pure function of its inputs and a seeded generator."""
 from .capstone_world import loop_world
 from .drift import bias_drift, drift_sigma, monte_carlo_drift
 from .ekf_runs import TWO_LANDMARKS, EkfRun, flipped_bearing_jacobian, run_ekf
+from .factor_graph import FactorGraphRun, factor_graph
 from .family import FamilyTable, FilterScore, family_table
 from .gated_run import OutlierRun, plain_and_gated
 from .hallway_world import (
@@ -48,6 +49,7 @@ __all__ = [
     "TWO_LANDMARKS",
     "AssociationScan",
     "EkfRun",
+    "FactorGraphRun",
     "FamilyTable",
     "FilterScore",
     "GatedUpdate",
@@ -68,6 +70,7 @@ __all__ = [
     "bias_drift",
     "door_likelihood",
     "drift_sigma",
+    "factor_graph",
     "family_table",
     "filter_target",
     "filter_tracks",
