@@ -145,6 +145,7 @@ EXAMPLES: dict[str, dict] = {
     "kf.pf_weight": dict(
         particles=CLOUD, z=READINGS, landmarks=MARKS, Q=Q_RB, log_w=[0.0, -1.0, 0.0, 0.0], labelled=True,
     ),
+    "kf.range_update": dict(mu_bar=POSE, Sig_bar=SIG_POSE, z=[2.3], beacon=LANDMARK, Q=[[0.01]]),
     "kf.resample_multinomial": dict(w=WEIGHTS, rng=RNG),
     "kf.resample_stratified": dict(w=WEIGHTS, rng=RNG),
     "kf.resample_systematic": dict(w=WEIGHTS, rng=RNG),

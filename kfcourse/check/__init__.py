@@ -14,8 +14,8 @@ still raises ``NotImplementedError`` gets "not yet" (``passed=False``,
 ``mistake=None``).
 
 Introduced in chapter 0; every chapter ends with an exercise (chapter 9 with two, the
-sigma points and the unscented transform), and ``notebooks/solutions.ipynb`` has one
-way to write each.
+sigma points and the unscented transform; chapter 12's first is the range update), and
+``notebooks/solutions.ipynb`` has one way to write each.
 """
 
 from ._core import MISTAKES, CheckResult
@@ -25,6 +25,7 @@ from .kalman_checks import fuse, kf_1d_step, kf_step
 from .localization_checks import localization_step
 from .nonlinear import range_bearing, range_bearing_jacobian, unicycle
 from .particle_checks import resample_systematic
+from .range_checks import range_update
 from .ukf_checks import sigma_points, unscented_transform
 
 __all__ = [
@@ -41,6 +42,7 @@ __all__ = [
     "localization_step",
     "range_bearing",
     "range_bearing_jacobian",
+    "range_update",
     "resample_systematic",
     "sigma_points",
     "unicycle",

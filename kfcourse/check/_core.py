@@ -132,6 +132,16 @@ MISTAKES = {
     "changes_input": "the function changes an array it was handed, in place",
     "stratified_not_systematic": "this is stratified resampling (one offset per slot), a right scheme, but the "
     "exercise asks for systematic resampling (one offset for all)",
+    # chapter 12
+    "H_not_unit": "H's position entries are the offset (x − bx, y − by) not divided by r: not the unit vector",
+    "heading_in_H": "H has a heading entry, and a range does not change when the robot turns: ∂r/∂θ = 0",
+    "no_Sig_bar": "Σ̄ is left out of the covariance update: I − KH instead of (I − KH)Σ̄",
+    "Sig_not_updated": "the covariance is returned as it came, Σ̄: the reading leaves the belief no surer",
+    "heading_held": "the heading is held fixed, and a range moves it through Σ̄'s correlation of θ with x and y",
+    "dot_not_outer": "K·H, the dot product of two 1-D arrays (a number), is used where the outer product KH (a "
+    "matrix) belongs",
+    "r_zero_not_refused": "a robot exactly at the beacon (r = 0) is not refused: the range has no direction there, "
+    "so H is undefined",
 }
 
 

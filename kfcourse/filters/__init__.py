@@ -19,6 +19,7 @@ from .particle import (
     resample_stratified,
     resample_systematic,
 )
+from .ranging import range_update
 from .smoother import ekf_rts_smoother, rts_smoother
 from .ukf import sigma_points, ukf_predict, ukf_update, unscented_1d, unscented_transform
 
@@ -55,6 +56,7 @@ __all__ = [
     "pf_estimate",
     "pf_predict",
     "pf_weight",
+    "range_update",
     "resample_multinomial",
     "resample_stratified",
     "resample_systematic",

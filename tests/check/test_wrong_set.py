@@ -131,6 +131,21 @@ NAMED = {
     "rs_side_left": "boundary_side",
     "rs_counts_instead_of_indices": "counts_not_indices",
     "rs_cumsum_in_place": "changes_input",
+    "ro_offset_to_beacon": "shift_wrong_way",
+    "ro_innovation_backwards": "shift_wrong_way",
+    "ro_S_without_Q": "forgot_Q",
+    "ro_Q_squared": "std_not_var",
+    "ro_squared_range": "q_not_sqrt_q",
+    "ro_H_unnormalised": "H_not_unit",
+    "ro_heading_entry_from_bearing": "heading_in_H",
+    "ro_forgets_Sig_bar": "no_Sig_bar",
+    "ro_covariance_unchanged": "Sig_not_updated",
+    "ro_covariance_product_reversed": "wrong_order",
+    "ro_position_only": "heading_held",
+    "ro_one_d_arrays": "dot_not_outer",
+    "ro_no_guard_at_beacon": "r_zero_not_refused",
+    "ro_skips_at_beacon": "r_zero_not_refused",
+    "ro_updates_in_place": "changes_input",
 }
 
 
