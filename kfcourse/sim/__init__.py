@@ -5,9 +5,9 @@ pure function of its inputs and a seeded generator."""
 from .capstone_world import loop_world
 from .drift import bias_drift, drift_sigma, monte_carlo_drift
 from .ekf_runs import TWO_LANDMARKS, EkfRun, flipped_bearing_jacobian, run_ekf
-from .factor_graph import FactorGraphRun, factor_graph
 from .family import FamilyTable, FilterScore, family_table
 from .gated_run import OutlierRun, plain_and_gated
+from .graph_run import FactorGraphRun, factor_graph
 from .hallway_world import (
     HallwayRun,
     door_likelihood,

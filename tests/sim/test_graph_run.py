@@ -1,4 +1,4 @@
-"""GTSAM's batch solution over CMU's Plaza2 log (kfcourse/sim/factor_graph.py): what chapter 12 will say of it.
+"""GTSAM's batch solution over CMU's Plaza2 log (kfcourse/sim/graph_run.py): what chapter 12 will say of it.
 
 The figures are stated with margins, and those of the runs are repeated under other rounding (``fact``): the EKF
 beside the graph is a long chain of numpy's rounding.
