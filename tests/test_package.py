@@ -87,8 +87,9 @@ def test_import_from_another_folder_is_light(tmp_path):
         "import kfcourse as kf\n"
         "kf.kf_1d_step(2.0, 0.4, 1.0, 3.6)\n"  # using the math loads nothing heavy either
         "print(json.dumps({'file': kf.__file__,\n"
-        "    'loaded': sorted(m for m in sys.modules if m.split('.')[0] in ('matplotlib', 'ipywidgets')\n"
-        "                     or m in ('kfcourse.plots', 'kfcourse.demos', 'kfcourse.sim'))}))\n"
+        "    'loaded': sorted(m for m in sys.modules\n"
+        "                     if m.split('.')[0] in ('matplotlib', 'ipywidgets', 'scipy', 'gtsam')\n"
+        "                     or m in ('kfcourse.plots', 'kfcourse.demos', 'kfcourse.sim', 'kfcourse.data'))}))\n"
     )
     env = {k: v for k, v in os.environ.items() if k != "PYTHONPATH"}
     proc = subprocess.run(
@@ -98,6 +99,22 @@ def test_import_from_another_folder_is_light(tmp_path):
     out = json.loads(proc.stdout.strip().splitlines()[-1])
     assert Path(out["file"]).resolve() == (REPO / "kfcourse" / "__init__.py").resolve()
     assert out["loaded"] == []
+
+
+def test_the_logs_of_real_robots_are_read_only_when_asked_for():
+    """kf.data and kf.sim load without scipy or gtsam; scipy comes with the first log read, and gtsam's compiled
+    module only with a factor graph."""
+    code = (
+        "import json, sys\n"
+        "import kfcourse as kf\n"
+        "kf.data, kf.sim\n"
+        "before = sorted(m for m in ('scipy', 'gtsam') if m in sys.modules)\n"
+        "kf.sim.range_localize(kf.data.load_plaza('Plaza2'), steps=3)\n"
+        "print(json.dumps({'before': before, 'after': sorted(m for m in ('scipy', 'gtsam') if m in sys.modules)}))\n"
+    )
+    proc = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True, timeout=120, check=False)
+    assert proc.returncode == 0, proc.stderr
+    assert json.loads(proc.stdout.strip().splitlines()[-1]) == {"before": [], "after": ["scipy"]}
 
 
 def test_unknown_attribute_is_an_attribute_error():
