@@ -234,6 +234,10 @@ EXAMPLES: dict[str, dict] = {
         log=PLAZA, filter="ekf", speed_std=0.05, turn_std=0.02, noise_per="metre", range_std=0.5, scale=1.07,
         gate=3.0, start=POSE, start_std=[1.0, 1.0, 0.1], steps=5,
     ),
+    "kf.sim.range_particles": dict(
+        log=PLAZA, n_particles=10, seed=0, speed_std=0.5, turn_std=0.3, range_std=2.0, scale=1.07, start=POSE, steps=5,
+        keep=[0, 5],
+    ),
     "kf.sim.read_door": dict(cell=3, doors=DOORS, reliability=0.9, rng=RNG),
     "kf.sim.readings": dict(
         truth=POSES, landmarks=MARKS, sensor_range=4.0, range_std=0.1, bearing_std=0.03, xi=np.zeros((2, 2, 2)),

@@ -204,7 +204,10 @@ def test_introduced_in_names_the_first_chapter_that_uses_it():
 
 def _seeded() -> list:
     """Every public function and demo that takes a ``seed``, with the other arguments it needs."""
-    needs = {"monte_carlo_drift": {"step_std": 0.05, "n": 10, "n_robots": 10}}
+    needs = {
+        "monte_carlo_drift": {"step_std": 0.05, "n": 10, "n_robots": 10},
+        "range_particles": {"log": kf.data.load_plaza("Plaza2")},
+    }
     found = []
     for space in (kf.sim, kf.demos):
         for name in space.__all__:

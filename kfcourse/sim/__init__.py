@@ -24,6 +24,7 @@ from .loop_filters import gate_within, localize, loop_filter, process_noise_of_o
 from .loop_records import LoopRun, Track
 from .particle_hallway_run import ParticleHallwayRun, simulate_particle_hallway
 from .particle_lap import ParticleRun, localized, particle_loop
+from .range_particles import RangeParticleRun, range_particles
 from .range_run import DATA_SHEET, RangeRun, range_localize, smoothed
 from .robot import DEFAULT_LANDMARKS, RobotRun, loop_controls, readings, simulate_robot
 from .scan import AssociationScan, GatedUpdate, association_scan, gated_update
@@ -59,6 +60,7 @@ __all__ = [
     "OutlierRun",
     "ParticleHallwayRun",
     "ParticleRun",
+    "RangeParticleRun",
     "RangeRun",
     "RobotRun",
     "TargetEstimates",
@@ -95,6 +97,7 @@ __all__ = [
     "process_noise",
     "process_noise_of_odometry",
     "range_localize",
+    "range_particles",
     "read_door",
     "readings",
     "run_ekf",
