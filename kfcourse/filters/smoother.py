@@ -3,8 +3,9 @@
 A filter's belief at step k uses the readings up to step k.  Once the run is over, the
 readings after step k say something about it too: the smoother runs backwards over the
 filter's stored results and gives each step the belief given *every* reading of the run,
-equations (1)-(3) of the section "Smoothing: what we know afterwards".  It needs the future,
-so it is for afterwards (mapping, a log's replay), never for a robot in motion.
+equations (5)-(7) of the section "Smoothing: what we know afterwards" (the chapter's (1)-(4)
+are the range update of its exercise).  It needs the future, so it is for afterwards (mapping,
+a log's replay), never for a robot in motion.
 """
 
 from __future__ import annotations
@@ -51,7 +52,7 @@ def _transitions(F, T: int, n: int) -> np.ndarray:
 
 
 def rts_smoother(mu, Sig, mu_bar, Sig_bar, F, residual: Callable | None = None) -> tuple[np.ndarray, np.ndarray]:
-    r"""The Rauch–Tung–Striebel smoother, equations (1) to (3) of chapter 12.
+    r"""The Rauch–Tung–Striebel smoother, equations (5) to (7) of chapter 12.
 
     Runs backwards over a filter's stored results, for k = T-2 down to 0, from
     :math:`\mu^s_{T-1} = \mu_{T-1}`, :math:`\Sigma^s_{T-1} = \Sigma_{T-1}`:
@@ -83,7 +84,7 @@ def rts_smoother(mu, Sig, mu_bar, Sig_bar, F, residual: Callable | None = None) 
         ``F[0]`` is not used.
     residual : callable ``residual(a, b) -> a - b``, optional
         Difference of states; pass :func:`kfcourse.models.pose_residual` so that a heading
-        difference is wrapped to (-pi, pi].  Each smoothed mean of (2) is then given back
+        difference is wrapped to (-pi, pi].  Each smoothed mean of (6) is then given back
         as ``residual(mu_s, 0)``: its angles wrapped, as the filter keeps them.
 
     Returns
@@ -97,7 +98,7 @@ def rts_smoother(mu, Sig, mu_bar, Sig_bar, F, residual: Callable | None = None) 
     mu_s, Sig_s = mu.copy(), Sig.copy()  # the last step: nothing comes after it
     for k in range(T - 2, -1, -1):
         try:  # C_k^T = Sig_bar_{k+1}^-1 F_{k+1} Sig_k, both covariances symmetric
-            C = np.linalg.solve(Sig_bar[k + 1], F[k + 1] @ Sig[k]).T  # (1) smoother gain
+            C = np.linalg.solve(Sig_bar[k + 1], F[k + 1] @ Sig[k]).T  # (5) smoother gain
         except np.linalg.LinAlgError:
             raise ValueError(
                 f"Sig_bar[{k + 1}] must be invertible: the predicted covariance is singular, "
@@ -107,10 +108,10 @@ def rts_smoother(mu, Sig, mu_bar, Sig_bar, F, residual: Callable | None = None) 
             d = mu_s[k + 1] - mu_bar[k + 1]  # what the future taught step k+1
         else:
             d = v.output(residual(mu_s[k + 1], mu_bar[k + 1]), "residual", n)  # the same, angles wrapped
-        mu_s[k] = mu[k] + C @ d  # (2) smoothed mean: mu_k + C_k (mu^s_{k+1} - mu_bar_{k+1})
+        mu_s[k] = mu[k] + C @ d  # (6) smoothed mean: mu_k + C_k (mu^s_{k+1} - mu_bar_{k+1})
         if residual is not None:
             mu_s[k] = v.output(residual(mu_s[k], np.zeros(n)), "residual", n)  # its angles wrapped, as mu's
-        Sig_k = Sig[k] + C @ (Sig_s[k + 1] - Sig_bar[k + 1]) @ C.T  # (3) smoothed covariance
+        Sig_k = Sig[k] + C @ (Sig_s[k + 1] - Sig_bar[k + 1]) @ C.T  # (7) smoothed covariance
         Sig_s[k] = (Sig_k + Sig_k.T) / 2  # symmetric, also in the last bit
     return mu_s, Sig_s
 
@@ -127,7 +128,7 @@ def ekf_rts_smoother(
         \Sigma^s_k = \Sigma_k + C_k(\Sigma^s_{k+1} - \bar\Sigma_{k+1})C_k^\top
 
     The Jacobian of each prediction is taken at the filtered mean it started from, as
-    :func:`kfcourse.filters.ekf.ekf_predict` took it; equations (1) to (3) are then those
+    :func:`kfcourse.filters.ekf.ekf_predict` took it; equations (5) to (7) are then those
     of :func:`rts_smoother`.  Step k's smoothed belief is its belief given every reading
     of the run, past and future: the smoother is for afterwards, not for a robot in motion.
     Introduced in chapter 12.
