@@ -1,0 +1,359 @@
+"""Chapter 12: a filter over a real robot's log, the Plaza2 run, and the settings that make it honest.
+
+A run over the whole log costs 1.3 s (EKF) to 2.3 s (PF, N = 1000): far more than a control may take.  So
+the model keeps every run it made, by its settings (the trust sliders move in steps of ×√10, so a setting
+comes back), and a setting it has not run yet runs in a worker thread: the change is answered at once with
+the truth and the ranges and the words "running the PF over the log…", and the run is drawn when it is done.
+Moving in time only redraws.  Without an event loop (a script, a test) every run is made at once.
+"""
+
+from __future__ import annotations
+
+import asyncio
+from collections.abc import Callable
+from concurrent.futures import ThreadPoolExecutor
+
+import ipywidgets as widgets
+import numpy as np
+
+from .. import _validate as v
+from ..data import load_plaza
+from ..plots.real_run_view import real_run_view, update_real_run_view
+from ..plots.style import FigureRenderer
+from ..sim.range_particles import PF_NOISE, SCALE, range_particles
+from ..sim.range_run import range_localize, smoothed
+from ..sim.scores import HONEST_NEES, verdict
+from ._base import Demo, shown, slider
+
+LOG = "Plaza2"  # 410 s, 1.35 km, 4 090 odometry steps and 1 816 ranges
+FIRST_FRAME = 60  # the second shown first: a minute in, the robot found by every filter from a known start
+FILTERS = {  # the choice shown -> (the filter, its scale toggle, its gate toggle): each choice sets both toggles
+    "EKF": ("ekf", False, False),
+    "EKF + scale and gate": ("ekf", True, True),
+    "UKF": ("ukf", False, False),
+    "PF": ("pf", True, False),  # the PF's scale toggle: chapter 12's 1.07 (on) or the data sheet's 1 (off)
+}
+# The EKF's and UKF's noise: chapter 12's honest tuning, odometry noise per metre driven.
+NOISE = {"speed_std": 0.05, "turn_std": 0.01, "range_std": 0.7, "noise_per": "metre"}
+GATE = 3.0  # standard deviations (chapter 8)
+GUESS = (0.0, 0.0, 0.0)  # the EKF's start when it is not told: the plaza's origin, facing east ...
+GUESS_STD = (30.0, 30.0, 3.0)  # ... with a first ellipse as wide as the plaza (chapter 12)
+TRUST_RANGE = (-2.0, 2.0)  # log10 of the filter's R and Q against its tuning: 0.01x to 100x
+TRUST_STEP = 0.5  # in log10: nine settings per slider, each a run the model keeps
+SLIDER_FORMAT = ".2g"
+N_PARTICLES = 1000
+IMAGE_WIDTH = 460  # CSS px: the picture beside the column of controls, within a laptop's 848 px
+COLUMN_WIDTH = 340  # CSS px
+
+
+class RealRunModel:
+    """Model: the settings of the filter over the log, its run, and the second shown.
+
+    Attributes
+    ----------
+    log : PlazaLog
+    seed : int
+        The particle filter's draws.
+    filter : str
+        A key of :data:`FILTERS`.
+    trust_motion, trust_sensor : float
+        The filter's R and Q as multiples of its tuning (1: chapter 12's honest noise).
+    scale, gate, known_start, smoothed : bool
+        The radio's scale estimated (EKF, UKF; the PF assumes chapter 12's 1.07 instead of 1); the gate at
+        :data:`GATE` (EKF, UKF); the filter told where the robot starts; the RTS path shown (EKF only).
+    frame : int
+        The second shown; ``row`` is the last pose at or before it.
+    run : RangeRun, RangeParticleRun or None
+        The run with these settings, or None while it is being made.
+    smooth : RangeRun or None
+        The smoother over ``run`` when shown and ready.
+    on_ready : callable
+        Called on the event loop when a run made in the background is drawn; the wiring sets it.
+    """
+
+    def __init__(self, seed: int = 0):
+        self.seed = v.whole(seed, "seed", 0)
+        self.log = load_plaza(LOG)
+        self.filter = "EKF"
+        self.trust_motion = self.trust_sensor = 1.0
+        _, self.scale, self.gate = FILTERS[self.filter]
+        self.smoothed = False
+        self.known_start = True
+        self.frame = FIRST_FRAME
+        self.on_ready: Callable[[], None] = lambda: None
+        self._runs: dict = {}  # every run made, by its settings (and "smooth" for the smoother's)
+        self._worker = ThreadPoolExecutor(max_workers=1, thread_name_prefix="real-run")
+        self._busy = None  # the settings being run in the background, if any
+        self._failed: set = set()  # settings whose run raised: not tried again
+        self._rerun(now=True)  # the first picture shows a run
+
+    # --- settings ---------------------------------------------------------------------------------
+
+    def key(self, smooth: bool = False) -> tuple:
+        """The settings that make the run (the seed only for the PF)."""
+        kind = FILTERS[self.filter][0]
+        trust = (round(np.log10(self.trust_motion), 3), round(np.log10(self.trust_sensor), 3))
+        gate = self.gate and kind != "pf"
+        return (kind, *trust, self.scale, gate, self.known_start, self.seed if kind == "pf" else None, smooth)
+
+    def _make(self, key: tuple):
+        """The run with the settings ``key``: the course's filters over the whole log."""
+        kind, log_r, log_q, scale, gate, known, seed, smooth = key
+        if smooth:
+            return smoothed(self._runs[(*key[:-1], False)])
+        r, q = np.sqrt(10.0**log_r), np.sqrt(10.0**log_q)  # R and Q scale as their standard deviations squared
+        if kind == "pf":
+            noise = {"speed_std": PF_NOISE["speed_std"] * r, "turn_std": PF_NOISE["turn_std"] * r}
+            start = self.log.truth[0] if known else None
+            return range_particles(
+                self.log, n_particles=N_PARTICLES, seed=seed, **noise, range_std=PF_NOISE["range_std"] * q,
+                scale=SCALE if scale else 1.0, start=start,
+            )  # fmt: skip
+        noise = {**NOISE, "speed_std": NOISE["speed_std"] * r, "turn_std": NOISE["turn_std"] * r}
+        noise["range_std"] = NOISE["range_std"] * q
+        start = {} if known else {"start": GUESS, "start_std": GUESS_STD}
+        return range_localize(
+            self.log, filter=kind, **noise, scale="online" if scale else 1.0, gate=GATE if gate else None, **start
+        )
+
+    def _wanted(self) -> list[tuple]:
+        """The runs the picture needs: the filter's, and the smoother's over it when shown."""
+        keys = [self.key()]
+        if self.smoothed and FILTERS[self.filter][0] == "ekf":
+            keys.append(self.key(smooth=True))
+        return keys
+
+    def _rerun(self, now: bool = False) -> None:
+        """Make the runs the settings need: at once ``now`` or without an event loop, else in the worker thread."""
+        missing = [key for key in self._wanted() if key not in self._runs and key not in self._failed]
+        if not missing:
+            return
+        try:
+            loop = None if now else asyncio.get_running_loop()
+        except RuntimeError:
+            loop = None
+        if loop is None:
+            for key in missing:
+                self._runs[key] = self._make(key)
+            return
+        if self._busy is None:
+            self._busy = missing[0]
+            self._worker.submit(self._work, missing[0], loop)
+
+    def _work(self, key: tuple, loop) -> None:
+        """In the worker thread: make one run, then hand it to the event loop."""
+        try:
+            run = self._make(key)
+        except Exception:  # a run that fails must not leave the demo waiting for ever: it is said, not retried
+            run = None
+        loop.call_soon_threadsafe(self._made, key, run)
+
+    def _made(self, key: tuple, run) -> None:
+        """On the event loop: keep the run, start the next one the settings need, redraw if it is shown."""
+        self._busy = None
+        if run is None:
+            self._failed.add(key)
+        else:
+            self._runs[key] = run
+        self._rerun()  # the settings may have moved on meanwhile: make what they need now
+        if key in self._wanted():
+            self.on_ready()
+
+    @property
+    def run(self):
+        return self._runs.get(self.key())
+
+    @property
+    def smooth(self):
+        return self._runs.get(self.key(smooth=True)) if self.smoothed else None
+
+    def busy(self) -> str:
+        """What the picture says while the run is not ready."""
+        if self.run is not None:
+            return ""
+        if self.key() in self._failed:
+            return f"the {self.kind_name()} failed on this setting"
+        return f"running the {self.kind_name()} over the log…"
+
+    def kind_name(self) -> str:
+        return {"ekf": "EKF", "ukf": "UKF", "pf": "PF"}[FILTERS[self.filter][0]]
+
+    # --- the controls' setters ------------------------------------------------------------------
+
+    def set_filter(self, name: str) -> None:
+        """A filter and its settings of the scale and the gate (:data:`FILTERS`)."""
+        self.filter = name
+        _, self.scale, self.gate = FILTERS[name]
+        self._rerun()
+
+    def set_trust_motion(self, ratio: float) -> None:
+        self.trust_motion = float(ratio)
+        self._rerun()
+
+    def set_trust_sensor(self, ratio: float) -> None:
+        self.trust_sensor = float(ratio)
+        self._rerun()
+
+    def set_scale(self, on: bool) -> None:
+        self.scale = bool(on)
+        self._unlabel()
+        self._rerun()
+
+    def set_gate(self, on: bool) -> None:
+        self.gate = bool(on)
+        self._unlabel()
+        self._rerun()
+
+    def set_start(self, start: str) -> None:
+        self.known_start = start == "known"
+        self._rerun()
+
+    def set_smoothed(self, on: bool) -> None:
+        self.smoothed = bool(on)
+        self._rerun()
+
+    def _unlabel(self) -> None:
+        """ "EKF + scale and gate" with either turned off is the EKF with what is left on."""
+        if self.filter == "EKF + scale and gate" and not (self.scale and self.gate):
+            self.filter = "EKF"
+
+    # --- what is shown --------------------------------------------------------------------------
+
+    @property
+    def row(self) -> int:
+        """The last pose at or before the second shown."""
+        return int(np.searchsorted(self.log.t_truth, self.frame, side="right") - 1)
+
+    def arrivals(self) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+        """The ranges that arrived in the second shown: their beacons (R, 2), the ranges (R,), and whether the
+        filter used each (all of them while its run is not ready, and for the PF)."""
+        log = self.log
+        i = np.flatnonzero((log.t_range > self.frame - 1) & (log.t_range <= self.frame))
+        run = self.run
+        used = run.used[i] if run is not None and hasattr(run, "used") else np.ones(i.size, bool)
+        return log.beacons[log.beacon[i]], log.range[i], used
+
+    def describe(self) -> str:
+        """The time shown, the filter's error there and whether the truth is inside its ellipse, the ranges of
+        that second, then the whole run's mean error and what its NEES says (:func:`~kfcourse.sim.verdict`)."""
+        k, run = self.row, self.run
+        _, ranges, used = self.arrivals()
+        refused = int(np.count_nonzero(~used))
+        heard = f"{ranges.size} range{'s' if ranges.size != 1 else ''} arrived this second"
+        heard += f", {refused} refused by the gate" if refused else ""
+        at = f"At t = {self.frame} s"
+        settings = self.changed()
+        name = f"the {self.filter}" + (f" ({settings})" if settings else "")
+        if run is None:
+            return f"{at}: {heard}; {name} is still running over the log, its estimate comes when it is done."
+        inside = "inside" if run.nees[k] <= 4.0 else "outside"  # the drawn 2σ ellipse: a NEES of at most 2²
+        mean_nees = float(np.mean(run.nees))
+        said = (
+            f"{at}: {heard}; {name} is {shown(float(run.error[k]), '.2f')} m off, the truth {inside} its 2σ "
+            f"ellipse. Over the whole run it is {shown(float(np.mean(run.error)), '.2f')} m off on average, mean "
+            f"NEES {mean_nees:.3g}: {verdict(mean_nees)} (honest: {HONEST_NEES[0]:g} to {HONEST_NEES[1]:g})."
+        )
+        smooth = self.smooth
+        if self.smoothed and smooth is None and FILTERS[self.filter][0] != "ekf":
+            said += " The smoother here is the EKF's (RTS): choose an EKF to see it."
+        elif smooth is not None:
+            said += f" Smoothed: {shown(float(np.mean(smooth.error)), '.2f')} m off on average."
+        return said
+
+    def changed(self) -> str:
+        """The settings that differ from the filter's choice: trust, scale, gate, start ("" if none)."""
+        parts = [
+            f"{label} ×{shown(value, SLIDER_FORMAT)}"
+            for label, value in (("R", self.trust_motion), ("Q", self.trust_sensor))
+            if shown(value, SLIDER_FORMAT) != shown(1.0, SLIDER_FORMAT)
+        ]
+        kind, scale, gate = FILTERS[self.filter]
+        if self.scale != scale:
+            parts.append(("scale " + ("1.07" if kind == "pf" else "estimated")) if self.scale else "scale 1")
+        if self.gate != gate and kind != "pf":
+            parts.append("gated" if self.gate else "no gate")
+        if not self.known_start:
+            parts.append("start unknown")
+        return ", ".join(parts)
+
+
+def _controls(model: RealRunModel) -> dict:
+    """The filter, its trust in its odometry (R) and in its ranges (Q), the scale, the gate, the start, the smoother.
+
+    A new setting runs the whole log once, in the background: the sliders report where they are let go."""
+    log = {"readout_format": SLIDER_FORMAT, "continuous_update": False, "base": 10}
+    R, Q = (slider(widgets.FloatLogSlider, f"filter's {x} ×", 1.0, *TRUST_RANGE, TRUST_STEP, **log) for x in "RQ")
+    choice = widgets.ToggleButtons(
+        options=list(FILTERS), value=model.filter, description="filter",
+        style={"button_width": "auto", "description_width": "40px"},
+    )  # fmt: skip
+    toggles = {
+        key: widgets.ToggleButton(value=value, description=label, tooltip=tip, layout=widgets.Layout(width="105px"))
+        for key, value, label, tip in (
+            ("scale", model.scale, "scale", "Estimate the radio's scale (the PF: assume 1.07)"),
+            ("gate", model.gate, "gate", f"Refuse a range more than {GATE:g} standard deviations off"),
+            ("smoothed", model.smoothed, "smoothed", "Show the RTS smoother's path (EKF)"),
+        )
+    }
+    start = widgets.ToggleButtons(options=["known", "unknown"], value="known", description="start")
+    return {
+        "filter": (choice, model.set_filter),
+        "trust_motion": (R, model.set_trust_motion),
+        "trust_sensor": (Q, model.set_trust_sensor),
+        "scale": (toggles["scale"], model.set_scale),
+        "gate": (toggles["gate"], model.set_gate),
+        "start": (start, model.set_start),
+        "smoothed": (toggles["smoothed"], model.set_smoothed),
+    }
+
+
+def _draw(view, model: RealRunModel, controls: dict) -> None:
+    """The picture, and the toggles the filter's choice sets (``EKF + scale and gate`` turns both on)."""
+    for key in ("scale", "gate"):
+        controls[key].value = getattr(model, key)
+    controls["filter"].value = model.filter
+    update_real_run_view(view, model)
+
+
+CAPTION = (
+    "<b>The real run.</b> Plaza2: 410 s of a real robot's wheel odometry and radio ranges to four beacons (purple "
+    "squares). Grey: the true path (dotted) and robot. Orange: each range as an arc of its circle about its beacon, "
+    "in the second it arrives (dotted: refused by the gate). Teal: the filter's trail, robot and 2σ ellipse; pale "
+    "band: the smoother's path. Strip: the position NEES of every pose, the honest band shaded. <i>filter's R</i> / "
+    "<i>Q</i>: its odometry and range noise, times chapter 12's tuning. <i>scale</i>: estimate the radio's scale; "
+    "<i>gate</i>: refuse ranges over 3σ off; <i>start</i>: told, or a guess 57 m off with an ellipse as wide as "
+    "the plaza (the PF: spread over it)."
+)
+
+
+def real_run(seed: int = 0) -> Demo:
+    """Demo "the real run" (chapter 12): the course's EKF, UKF or particle filter over the Plaza2 log.
+
+    Run plays the log a second per frame, the step slider scrubs it.  The filter's choice, its R and Q (log
+    sliders), the scale, the gate and the start each pick a setting; a setting not seen yet runs the whole log
+    in the background (1 to 3 s) while the picture shows the truth and the ranges.  *smoothed* overlays the RTS
+    smoother's path (EKF runs).  ``seed`` seeds the particle filter.
+
+    Returns
+    -------
+    Demo (an ipywidgets.VBox)
+    """
+    model = RealRunModel(seed)
+    view = real_run_view(model)
+    controls = _controls(model)
+    widgets_only = {key: control for key, (control, _) in controls.items()}
+    demo = Demo(
+        name="real-run",
+        caption=CAPTION,
+        model=model,
+        renderer=FigureRenderer(view.fig, view.moving),
+        draw=lambda: _draw(view, model, widgets_only),
+        describe=model.describe,
+        frames=int(np.floor(model.log.t_truth[-1])) + 1,
+        controls=controls,
+        beside=[["play", "frame"], "filter", "trust_motion", "trust_sensor", ["scale", "gate", "smoothed"], "start"],
+        display_width=IMAGE_WIDTH,
+    )
+    demo.controls["frame"].layout.width = f"{COLUMN_WIDTH - 90}px"
+    model.on_ready = demo.refresh
+    return demo
