@@ -27,11 +27,11 @@ from ._base import Demo, shown, slider
 
 LOG = "Plaza2"  # 410 s, 1.35 km, 4 090 odometry steps and 1 816 ranges
 FIRST_FRAME = 60  # the second shown first: a minute in, the robot found by every filter from a known start
-FILTERS = {  # the choice shown -> (the filter, its scale toggle, its gate toggle): each choice sets both toggles
+FILTERS = {  # the choice shown -> (the filter, the scale estimated and the gate whatever the toggles say)
     "EKF": ("ekf", False, False),
     "EKF + scale and gate": ("ekf", True, True),
     "UKF": ("ukf", False, False),
-    "PF": ("pf", True, False),  # the PF's scale toggle: chapter 12's 1.07 (on) or the data sheet's 1 (off)
+    "PF": ("pf", False, False),  # the PF assumes chapter 12's scale, 1.07, and has no gate: the toggles do nothing
 }
 # The EKF's and UKF's noise: chapter 12's honest tuning, odometry noise per metre driven.
 NOISE = {"speed_std": 0.05, "turn_std": 0.01, "range_std": 0.7, "noise_per": "metre"}
@@ -59,8 +59,9 @@ class RealRunModel:
     trust_motion, trust_sensor : float
         The filter's R and Q as multiples of its tuning (1: chapter 12's honest noise).
     scale, gate, known_start, smoothed : bool
-        The radio's scale estimated (EKF, UKF; the PF assumes chapter 12's 1.07 instead of 1); the gate at
-        :data:`GATE` (EKF, UKF); the filter told where the robot starts; the RTS path shown (EKF only).
+        The toggles: the radio's scale estimated, the gate at :data:`GATE` (both for the EKF and the UKF, on
+        whatever they say for "EKF + scale and gate", nothing for the PF, which assumes chapter 12's scale 1.07
+        and has no gate; :meth:`settings`); the filter told where the robot starts; the RTS path shown (EKF).
     frame : int
         The second shown; ``row`` is the last pose at or before it.
     run : RangeRun, RangeParticleRun or None
@@ -76,8 +77,7 @@ class RealRunModel:
         self.log = load_plaza(LOG)
         self.filter = "EKF"
         self.trust_motion = self.trust_sensor = 1.0
-        _, self.scale, self.gate = FILTERS[self.filter]
-        self.smoothed = False
+        self.scale = self.gate = self.smoothed = False
         self.known_start = True
         self.frame = FIRST_FRAME
         self.on_ready: Callable[[], None] = lambda: None
@@ -91,10 +91,17 @@ class RealRunModel:
 
     def key(self, smooth: bool = False) -> tuple:
         """The settings that make the run (the seed only for the PF)."""
-        kind = FILTERS[self.filter][0]
+        kind, scale, gate = self.settings()
         trust = (round(np.log10(self.trust_motion), 3), round(np.log10(self.trust_sensor), 3))
-        gate = self.gate and kind != "pf"
-        return (kind, *trust, self.scale, gate, self.known_start, self.seed if kind == "pf" else None, smooth)
+        return (kind, *trust, scale, gate, self.known_start, self.seed if kind == "pf" else None, smooth)
+
+    def settings(self) -> tuple[str, bool, bool]:
+        """The filter ("ekf", "ukf", "pf"), whether it estimates the scale and whether it gates: the toggles, or
+        the filter's choice where it says so (:data:`FILTERS`); the PF neither (it assumes 1.07)."""
+        kind, scale, gate = FILTERS[self.filter]
+        if kind == "pf":
+            return kind, False, False
+        return kind, scale or self.scale, gate or self.gate
 
     def _make(self, key: tuple):
         """The run with the settings ``key``: the course's filters over the whole log."""
@@ -107,7 +114,7 @@ class RealRunModel:
             start = self.log.truth[0] if known else None
             return range_particles(
                 self.log, n_particles=N_PARTICLES, seed=seed, **noise, range_std=PF_NOISE["range_std"] * q,
-                scale=SCALE if scale else 1.0, start=start,
+                scale=SCALE, start=start,
             )  # fmt: skip
         noise = {**NOISE, "speed_std": NOISE["speed_std"] * r, "turn_std": NOISE["turn_std"] * r}
         noise["range_std"] = NOISE["range_std"] * q
@@ -181,9 +188,7 @@ class RealRunModel:
     # --- the controls' setters ------------------------------------------------------------------
 
     def set_filter(self, name: str) -> None:
-        """A filter and its settings of the scale and the gate (:data:`FILTERS`)."""
         self.filter = name
-        _, self.scale, self.gate = FILTERS[name]
         self._rerun()
 
     def set_trust_motion(self, ratio: float) -> None:
@@ -196,12 +201,10 @@ class RealRunModel:
 
     def set_scale(self, on: bool) -> None:
         self.scale = bool(on)
-        self._unlabel()
         self._rerun()
 
     def set_gate(self, on: bool) -> None:
         self.gate = bool(on)
-        self._unlabel()
         self._rerun()
 
     def set_start(self, start: str) -> None:
@@ -211,11 +214,6 @@ class RealRunModel:
     def set_smoothed(self, on: bool) -> None:
         self.smoothed = bool(on)
         self._rerun()
-
-    def _unlabel(self) -> None:
-        """ "EKF + scale and gate" with either turned off is the EKF with what is left on."""
-        if self.filter == "EKF + scale and gate" and not (self.scale and self.gate):
-            self.filter = "EKF"
 
     # --- what is shown --------------------------------------------------------------------------
 
@@ -261,17 +259,16 @@ class RealRunModel:
         return said
 
     def changed(self) -> str:
-        """The settings that differ from the filter's choice: trust, scale, gate, start ("" if none)."""
+        """The settings the filter's name does not say: trust, scale, gate, start ("" if none)."""
         parts = [
             f"{label} ×{shown(value, SLIDER_FORMAT)}"
             for label, value in (("R", self.trust_motion), ("Q", self.trust_sensor))
             if shown(value, SLIDER_FORMAT) != shown(1.0, SLIDER_FORMAT)
         ]
         kind, scale, gate = FILTERS[self.filter]
-        if self.scale != scale:
-            parts.append(("scale " + ("1.07" if kind == "pf" else "estimated")) if self.scale else "scale 1")
-        if self.gate != gate and kind != "pf":
-            parts.append("gated" if self.gate else "no gate")
+        if kind != "pf":
+            parts += ["scale estimated"] if self.scale and not scale else []
+            parts += ["gated"] if self.gate and not gate else []
         if not self.known_start:
             parts.append("start unknown")
         return ", ".join(parts)
@@ -290,7 +287,7 @@ def _controls(model: RealRunModel) -> dict:
     toggles = {
         key: widgets.ToggleButton(value=value, description=label, tooltip=tip, layout=widgets.Layout(width="105px"))
         for key, value, label, tip in (
-            ("scale", model.scale, "scale", "Estimate the radio's scale (the PF: assume 1.07)"),
+            ("scale", model.scale, "scale", "Estimate the radio's scale (EKF, UKF)"),
             ("gate", model.gate, "gate", f"Refuse a range more than {GATE:g} standard deviations off"),
             ("smoothed", model.smoothed, "smoothed", "Show the RTS smoother's path (EKF)"),
         )
@@ -307,22 +304,15 @@ def _controls(model: RealRunModel) -> dict:
     }
 
 
-def _draw(view, model: RealRunModel, controls: dict) -> None:
-    """The picture, and the toggles the filter's choice sets (``EKF + scale and gate`` turns both on)."""
-    for key in ("scale", "gate"):
-        controls[key].value = getattr(model, key)
-    controls["filter"].value = model.filter
-    update_real_run_view(view, model)
-
-
 CAPTION = (
     "<b>The real run.</b> Plaza2: 410 s of a real robot's wheel odometry and radio ranges to four beacons (purple "
     "squares). Grey: the true path (dotted) and robot. Orange: each range as an arc of its circle about its beacon, "
     "in the second it arrives (dotted: refused by the gate). Teal: the filter's trail, robot and 2σ ellipse; pale "
     "band: the smoother's path. Strip: the position NEES of every pose, the honest band shaded. <i>filter's R</i> / "
-    "<i>Q</i>: its odometry and range noise, times chapter 12's tuning. <i>scale</i>: estimate the radio's scale; "
-    "<i>gate</i>: refuse ranges over 3σ off; <i>start</i>: told, or a guess 57 m off with an ellipse as wide as "
-    "the plaza (the PF: spread over it)."
+    "<i>Q</i>: its odometry and range noise, times chapter 12's tuning. <i>scale</i>: the EKF or UKF estimates the "
+    "radio's scale; <i>gate</i>: it refuses ranges over 3σ off (<i>EKF + scale and gate</i> does both; the PF "
+    "assumes the scale 1.07, without a gate). <i>start</i>: told, or a guess 57 m off with an ellipse as wide as "
+    "the plaza (the PF: its cloud spread over it). <i>smoothed</i>: the EKF's RTS path."
 )
 
 
@@ -341,13 +331,12 @@ def real_run(seed: int = 0) -> Demo:
     model = RealRunModel(seed)
     view = real_run_view(model)
     controls = _controls(model)
-    widgets_only = {key: control for key, (control, _) in controls.items()}
     demo = Demo(
         name="real-run",
         caption=CAPTION,
         model=model,
         renderer=FigureRenderer(view.fig, view.moving),
-        draw=lambda: _draw(view, model, widgets_only),
+        draw=lambda: update_real_run_view(view, model),
         describe=model.describe,
         frames=int(np.floor(model.log.t_truth[-1])) + 1,
         controls=controls,
