@@ -1,15 +1,17 @@
 """Chapter 12: a filter over a real robot's log, the Plaza2 run, and the settings that make it honest.
 
 A run over the whole log costs 1.3 s (EKF) to 2.3 s (PF, N = 1000): far more than a control may take.  So
-the model keeps every run it made, by its settings (the trust sliders move in steps of ×√10, so a setting
-comes back), and a setting it has not run yet runs in a worker thread: the change is answered at once with
-the truth and the ranges and the words "running the PF over the log…", and the run is drawn when it is done.
-Moving in time only redraws.  Without an event loop (a script, a test) every run is made at once.
+the module keeps the last :data:`KEEP_RUNS` runs made, by their settings, for every real-run demo of the kernel
+(the trust sliders move in steps of ×√10, so a setting comes back), and a setting not run yet runs in the
+demo's worker thread: the change is answered at once with the truth and the ranges and the words "running the
+PF over the log…", and the run is drawn when it is done.  Moving in time only redraws.  The first run, and
+every run without an event loop (a script, a test), is made at once.
 """
 
 from __future__ import annotations
 
 import asyncio
+from collections import OrderedDict
 from collections.abc import Callable
 from concurrent.futures import ThreadPoolExecutor
 
@@ -42,8 +44,28 @@ TRUST_RANGE = (-2.0, 2.0)  # log10 of the filter's R and Q against its tuning: 0
 TRUST_STEP = 0.5  # in log10: nine settings per slider, each a run the model keeps
 SLIDER_FORMAT = ".2g"
 N_PARTICLES = 1000
+KEEP_RUNS = 32  # runs kept, shared by every real-run demo of the kernel: about 1 MB each
 IMAGE_WIDTH = 460  # CSS px: the picture beside the column of controls, within a laptop's 848 px
 COLUMN_WIDTH = 340  # CSS px
+
+
+_KEPT: OrderedDict = OrderedDict()  # the runs made, by their settings (RealRunModel.key), latest used last
+
+
+def _kept(key: tuple):
+    """The run kept for ``key``, or None; on the event loop's thread only, as :func:`_keep`."""
+    run = _KEPT.get(key)
+    if run is not None:
+        _KEPT.move_to_end(key)
+    return run
+
+
+def _keep(key: tuple, run) -> None:
+    """Keep ``run`` for ``key``, dropping the runs least recently used beyond :data:`KEEP_RUNS`."""
+    _KEPT[key] = run
+    _KEPT.move_to_end(key)
+    while len(_KEPT) > KEEP_RUNS:
+        _KEPT.popitem(last=False)
 
 
 class RealRunModel:
@@ -81,7 +103,6 @@ class RealRunModel:
         self.known_start = True
         self.frame = FIRST_FRAME
         self.on_ready: Callable[[], None] = lambda: None
-        self._runs: dict = {}  # every run made, by its settings (and "smooth" for the smoother's)
         self._worker = ThreadPoolExecutor(max_workers=1, thread_name_prefix="real-run")
         self._busy = None  # the settings being run in the background, if any
         self._failed: set = set()  # settings whose run raised: not tried again
@@ -93,7 +114,8 @@ class RealRunModel:
         """The settings that make the run (the seed only for the PF)."""
         kind, scale, gate = self.settings()
         trust = (round(np.log10(self.trust_motion), 3), round(np.log10(self.trust_sensor), 3))
-        return (kind, *trust, scale, gate, self.known_start, self.seed if kind == "pf" else None, smooth)
+        seed = self.seed if kind == "pf" else None
+        return (LOG, kind, *trust, scale, gate, self.known_start, seed, smooth)
 
     def settings(self) -> tuple[str, bool, bool]:
         """The filter ("ekf", "ukf", "pf"), whether it estimates the scale and whether it gates: the toggles, or
@@ -103,11 +125,12 @@ class RealRunModel:
             return kind, False, False
         return kind, scale or self.scale, gate or self.gate
 
-    def _make(self, key: tuple):
-        """The run with the settings ``key``: the course's filters over the whole log."""
-        kind, log_r, log_q, scale, gate, known, seed, smooth = key
+    def _make(self, key: tuple, base=None):
+        """The run with the settings ``key``: the course's filters over the whole log, or the smoother over
+        ``base``, the filter's run, for the smoother's settings."""
+        _, kind, log_r, log_q, scale, gate, known, seed, smooth = key
         if smooth:
-            return smoothed(self._runs[(*key[:-1], False)])
+            return smoothed(base)
         r, q = np.sqrt(10.0**log_r), np.sqrt(10.0**log_q)  # R and Q scale as their standard deviations squared
         if kind == "pf":
             noise = {"speed_std": PF_NOISE["speed_std"] * r, "turn_std": PF_NOISE["turn_std"] * r}
@@ -132,7 +155,7 @@ class RealRunModel:
 
     def _rerun(self, now: bool = False) -> None:
         """Make the runs the settings need: at once ``now`` or without an event loop, else in the worker thread."""
-        missing = [key for key in self._wanted() if key not in self._runs and key not in self._failed]
+        missing = [key for key in self._wanted() if _kept(key) is None and key not in self._failed]
         if not missing:
             return
         try:
@@ -141,16 +164,17 @@ class RealRunModel:
             loop = None
         if loop is None:
             for key in missing:
-                self._runs[key] = self._make(key)
+                _keep(key, self._make(key, _kept((*key[:-1], False))))
             return
         if self._busy is None:
             self._busy = missing[0]
-            self._worker.submit(self._work, missing[0], loop)
+            base = _kept((*missing[0][:-1], False))  # the smoother's input, read here: _KEPT is the loop's
+            self._worker.submit(self._work, missing[0], base, loop)
 
-    def _work(self, key: tuple, loop) -> None:
+    def _work(self, key: tuple, base, loop) -> None:
         """In the worker thread: make one run, then hand it to the event loop."""
         try:
-            run = self._make(key)
+            run = self._make(key, base)
         except Exception:  # a run that fails must not leave the demo waiting for ever: it is said, not retried
             run = None
         loop.call_soon_threadsafe(self._made, key, run)
@@ -161,18 +185,18 @@ class RealRunModel:
         if run is None:
             self._failed.add(key)
         else:
-            self._runs[key] = run
+            _keep(key, run)
         self._rerun()  # the settings may have moved on meanwhile: make what they need now
         if key in self._wanted():
             self.on_ready()
 
     @property
     def run(self):
-        return self._runs.get(self.key())
+        return _kept(self.key())
 
     @property
     def smooth(self):
-        return self._runs.get(self.key(smooth=True)) if self.smoothed else None
+        return _kept(self.key(smooth=True)) if self.smoothed else None
 
     def busy(self) -> str:
         """What the picture says while the run is not ready."""
@@ -253,9 +277,9 @@ class RealRunModel:
         )
         smooth = self.smooth
         if self.smoothed and smooth is None and FILTERS[self.filter][0] != "ekf":
-            said += " The smoother here is the EKF's (RTS): choose an EKF to see it."
+            said = said[:-1] + "; the smoother here is the EKF's (RTS): choose an EKF to see it."
         elif smooth is not None:
-            said += f" Smoothed: {shown(float(np.mean(smooth.error)), '.2f')} m off on average."
+            said = said[:-1] + f"; smoothed, {shown(float(np.mean(smooth.error)), '.2f')} m off on average."
         return said
 
     def changed(self) -> str:

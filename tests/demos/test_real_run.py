@@ -5,6 +5,8 @@ it; the picture shows the ranges of the second shown, and the description the er
 from __future__ import annotations
 
 import asyncio
+import sys
+from collections import OrderedDict
 
 import numpy as np
 import pytest
@@ -22,10 +24,12 @@ from kfcourse.demos.real_run import (
     RealRunModel,
 )
 from kfcourse.plots.real_run_view import range_arcs
+from tests.demos.describing import at_the_ends, move, said
 
 # Only the tests marked `fact` state facts of seeded runs (the PF's): the EKF and the UKF draw nothing.
 
 LOG = kf.data.load_plaza("Plaza2")
+real_run_module = sys.modules["kfcourse.demos.real_run"]  # the module: kf.demos.real_run is the demo function
 
 
 def make(seed=0):
@@ -37,14 +41,20 @@ def engine(**settings):
     return kf.sim.range_localize(LOG, **{**NOISE, **settings})
 
 
+def nothing_kept(monkeypatch) -> None:
+    """No run kept from an earlier test: every setting is new."""
+    monkeypatch.setattr(real_run_module, "_KEPT", OrderedDict())
+
+
 def counting(monkeypatch) -> list:
-    """Every run the models make from now on, by its settings."""
+    """Every run the models make from now on, by its settings, none kept from before."""
+    nothing_kept(monkeypatch)
     made = []
     real = RealRunModel._make
 
-    def make_and_count(self, key):
+    def make_and_count(self, key, base=None):
         made.append(key)
-        return real(self, key)
+        return real(self, key, base)
 
     monkeypatch.setattr(RealRunModel, "_make", make_and_count)
     return made
@@ -129,7 +139,7 @@ def test_smoothed_is_the_rts_smoother_over_the_run_shown():
     np.testing.assert_allclose(demo.model.smooth.mu, kf.sim.smoothed(demo.model.run).mu, rtol=0, atol=1e-12)
     view_smooth = demo.renderer.dynamic[0]
     assert view_smooth.get_visible() and len(view_smooth.get_xdata()) == LOG.t_truth.size
-    assert "Smoothed:" in demo.description.text
+    assert "; smoothed, " in demo.description.text
 
 
 def test_the_arcs_are_the_ranges_of_the_second_shown():
@@ -173,7 +183,8 @@ def test_the_description_says_the_error_and_the_verdict():
     assert "(Q ×1.0e+2)" in demo.description.text
 
 
-def test_on_an_event_loop_a_new_setting_answers_at_once_and_is_drawn_when_made():
+def test_on_an_event_loop_a_new_setting_answers_at_once_and_is_drawn_when_made(monkeypatch):
+    nothing_kept(monkeypatch)
     seen = {}
 
     async def scenario():
@@ -200,11 +211,13 @@ def test_on_an_event_loop_a_new_setting_answers_at_once_and_is_drawn_when_made()
 
 
 def test_a_run_that_fails_in_the_worker_is_said_and_not_tried_again(monkeypatch):
+    nothing_kept(monkeypatch)
+
     async def scenario():
         demo = make()
         tries = []
 
-        def broken(self, key):
+        def broken(self, key, base=None):
             tries.append(key)
             raise FloatingPointError("boom")
 
@@ -229,3 +242,29 @@ def test_the_picture_and_its_column_fit_a_laptop():
 def test_a_bad_seed_is_refused_by_name():
     with pytest.raises(ValueError, match=r"^seed must be a whole number >= 0"):
         kf.demos.real_run(seed=-1)
+
+
+def test_the_runs_kept_are_bounded_and_shared_by_every_demo(monkeypatch):
+    made = counting(monkeypatch)
+    monkeypatch.setattr(real_run_module, "KEEP_RUNS", 2)
+    demo = make()
+    demo.controls["trust_motion"].value = 10.0
+    assert len(made) == 2 and len(real_run_module._KEPT) == 2
+    make()  # the first setting is kept: a second demo makes nothing
+    assert len(made) == 2
+    demo.controls["trust_sensor"].value = 10.0  # a third run: the least recently used one goes
+    assert len(made) == 3 and len(real_run_module._KEPT) == 2
+
+
+def test_the_description_is_two_sentences_and_names_each_slider_as_it_shows():
+    demo = make()
+    move(demo, "frame", 200)
+    for key in ("trust_motion", "trust_sensor"):
+        texts = at_the_ends(demo, [key])
+        assert all("m off" in text for text in texts)
+        demo.controls[key].value = 1.0
+    move(demo, "start", "unknown")
+    move(demo, "smoothed", True)
+    assert "; smoothed, " in said(demo)
+    move(demo, "filter", "UKF")
+    assert "the EKF's (RTS)" in said(demo)
