@@ -169,7 +169,8 @@ class RealRunModel:
         if self._busy is None:
             self._busy = missing[0]
             base = _kept((*missing[0][:-1], False))  # the smoother's input, read here: _KEPT is the loop's
-            self._worker.submit(self._work, missing[0], base, loop)
+            # Once the change's picture is sent: the worker holds the GIL most of the time it runs
+            loop.call_soon(self._worker.submit, self._work, missing[0], base, loop)
 
     def _work(self, key: tuple, base, loop) -> None:
         """In the worker thread: make one run, then hand it to the event loop."""
