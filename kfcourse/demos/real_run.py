@@ -344,7 +344,7 @@ CAPTION = (
 def real_run(seed: int = 0) -> Demo:
     """Demo "the real run" (chapter 12): the course's EKF, UKF or particle filter over the Plaza2 log.
 
-    Run plays the log a second per frame, the step slider scrubs it.  The filter's choice, its R and Q (log
+    Run plays the log a second per frame, the time slider scrubs it.  The filter's choice, its R and Q (log
     sliders), the scale, the gate and the start each pick a setting; a setting not seen yet runs the whole log
     in the background (1 to 3 s) while the picture shows the truth and the ranges.  *smoothed* overlays the RTS
     smoother's path (EKF runs).  ``seed`` seeds the particle filter.
@@ -369,5 +369,7 @@ def real_run(seed: int = 0) -> Demo:
         display_width=IMAGE_WIDTH,
     )
     demo.controls["frame"].layout.width = f"{COLUMN_WIDTH - 90}px"
+    demo.controls["frame"].description = "t (s)"  # a frame is a second of the log
+    demo.description.names = {**demo.description.names, "frame": "t (s)"}
     model.on_ready = demo.refresh
     return demo

@@ -65,6 +65,7 @@ def test_first_frame_is_the_data_sheet_ekf_a_minute_in():
     m = demo.model
     assert m.frame == FIRST_FRAME == demo.controls["frame"].value == 60
     assert demo.controls["frame"].max == int(LOG.t_truth[-1]) == 409
+    assert demo.controls["frame"].description == demo.description.names["frame"] == "t (s)"  # a frame a second
     assert (m.filter, m.scale, m.gate, m.known_start, m.smoothed) == ("EKF", False, False, True, False)
     np.testing.assert_array_equal(m.run.mu, engine().mu)
     assert m.smooth is None
