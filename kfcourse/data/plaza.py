@@ -94,9 +94,10 @@ class PlazaLog(Record):
 
     def only(self, beacons) -> PlazaLog:
         """The same log with the ranges to ``beacons`` (rows of :attr:`beacons`) alone, the others left out: what a
-        robot that hears fewer beacons would have had.  Introduced in chapter 12 (two beacons: a mirror image)."""
+        robot that hears fewer beacons would have had (none, ``[]``: a filter over it dead-reckons).  Introduced in
+        chapter 12 (two beacons: a mirror image)."""
         rows = np.unique(v.vector(beacons, "beacons"))
-        if rows.size == 0 or not np.all((rows == np.round(rows)) & (rows >= 0) & (rows < len(self.beacons))):
+        if not np.all((rows == np.round(rows)) & (rows >= 0) & (rows < len(self.beacons))):
             raise ValueError(f"beacons must be rows of the log's {len(self.beacons)} beacons, got {beacons!r}")
         keep = np.isin(self.beacon, rows.astype(int))
         fields = {name: getattr(self, name) for name in self.__dataclass_fields__}

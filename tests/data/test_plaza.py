@@ -95,7 +95,8 @@ def test_a_log_with_fewer_beacons_keeps_only_their_ranges(log):
     assert set(two.beacon.tolist()) == {2, 3} and two.range.size == np.isin(log.beacon, [2, 3]).sum()
     np.testing.assert_array_equal(two.truth, log.truth)
     np.testing.assert_array_equal(two.beacons, log.beacons)  # the rows keep their meaning
-    for bad in ([4], [-1], [0.5], []):
+    assert log.only([]).range.size == 0
+    for bad in ([4], [-1], [0.5]):
         with pytest.raises(ValueError, match=r"^beacons must be rows"):
             log.only(bad)
 

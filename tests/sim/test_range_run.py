@@ -77,6 +77,14 @@ def test_hearing_two_beacons_from_the_mirrored_start_the_ekf_follows_the_mirror_
     assert np.median(kf.sim.range_localize(two, scale=1.07).error) < 0.5
 
 
+def test_with_no_ranges_the_ekf_dead_reckons(plaza2):
+    """The EKF's predictions alone are the log's dead reckoning, pose for pose; only its ellipse is new."""
+    blind = kf.sim.range_localize(plaza2.only([]))
+    np.testing.assert_array_equal(blind.mu, plaza2.dead_reckoning())
+    area = np.sqrt(np.linalg.det(blind.Sig[:, :2, :2]))
+    assert blind.z.size == 0 and area[-1] > 100 * area[0]  # nothing stops the ellipse growing
+
+
 def test_only_an_ekf_run_is_smoothed(plaza2):
     with pytest.raises(ValueError, match=r"^run must be an EKF's RangeRun"):
         kf.sim.smoothed(kf.sim.range_localize(plaza2, filter="ukf", steps=10))
