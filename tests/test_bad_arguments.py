@@ -261,7 +261,9 @@ EXAMPLES: dict[str, dict] = {
     ),
     "kf.sim.smoothed": dict(run=RANGES),
     "kf.sim.start_cell": dict(rng=RNG, n_cells=12),
-    "kf.sim.tuning_score": dict(speed_std=0.05, turn_std=0.02, range_std=0.5, scale=1.07, gate=3.0, log="Plaza2"),
+    "kf.sim.tuning_score": dict(
+        speed_std=0.05, turn_std=0.02, noise_per="metre", range_std=0.5, scale=1.07, gate=3.0, log="Plaza2"
+    ),
     "kf.sim.verdict": dict(mean_nees=2.0, band=(1.0, 4.0)),
     # ---------------------------------------------------------------- kf.data: the logs of real robots
     "kf.data.load_plaza": dict(name="Plaza1"),

@@ -165,7 +165,7 @@ def range_localize(
     start_std=START_STD,
     steps: int | None = None,
 ) -> RangeRun:
-    r"""Follow a real robot's log with the course's EKF: odometry to predict, ranges to beacons to update.
+    r"""Follow a real robot's log with the course's EKF or UKF: odometry to predict, ranges to beacons to update.
 
     Predict (chapter 8): the unicycle with the step's speed and turn rate, its R the odometry noise
     :math:`M = \mathrm{diag}(\sigma_V^2, \sigma_\omega^2)` mapped into the pose (``process_noise_of_odometry``);
