@@ -228,6 +228,7 @@ EXAMPLES: dict[str, dict] = {
         landmarks=kf.sim.DEFAULT_LANDMARKS, sensor_range=4.0,
     ),
     "kf.sim.plain_and_gated": dict(z=[0.1, -0.2, 5.0], mu0=0.0, var0=1.0, R=0.01, Q=0.25, gate=3.0),
+    "kf.sim.plaza_family": dict(log=PLAZA, n_particles=10, seed=0, steps=5),
     "kf.sim.process_noise": dict(dt=0.1, accel_var=1.0),
     "kf.sim.process_noise_of_odometry": dict(mu=POSE, u=ODOMETRY, dt=DT, M=M_ODO),
     "kf.sim.range_localize": dict(
