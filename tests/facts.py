@@ -48,6 +48,9 @@ UNMARKED = {
     "tests/plots/test_density.py": "the same picture at more pixels: one run drawn twice",
     "tests/plots/test_loop_animation.py": "the README's animation draws the demo's own frames, not the run's numbers",
     "tests/plots/test_role_styles.py": "the line style of each role in every figure, not the run's numbers",
+    "tests/sim/test_plaza_family.py::test_the_table_prints_a_row_per_filter_and_how_it_was_measured": (
+        "that the table prints each row's name and its notes, not the runs' numbers"
+    ),
     # tests of files whose other tests state facts (each marked fact on its own)
     "tests/demos/test_landmark_loop.py::test_sliders_rerun_the_lap_once_where_they_are_let_go": (
         "which sliders rerun when let go and which follow the drag, not the run"

@@ -228,6 +228,7 @@ EXAMPLES: dict[str, dict] = {
         landmarks=kf.sim.DEFAULT_LANDMARKS, sensor_range=4.0,
     ),
     "kf.sim.plain_and_gated": dict(z=[0.1, -0.2, 5.0], mu0=0.0, var0=1.0, R=0.01, Q=0.25, gate=3.0),
+    "kf.sim.plaza_family": dict(log=PLAZA, n_particles=10, seed=0, steps=5),
     "kf.sim.process_noise": dict(dt=0.1, accel_var=1.0),
     "kf.sim.process_noise_of_odometry": dict(mu=POSE, u=ODOMETRY, dt=DT, M=M_ODO),
     "kf.sim.range_localize": dict(
@@ -261,7 +262,9 @@ EXAMPLES: dict[str, dict] = {
     ),
     "kf.sim.smoothed": dict(run=RANGES),
     "kf.sim.start_cell": dict(rng=RNG, n_cells=12),
-    "kf.sim.tuning_score": dict(speed_std=0.05, turn_std=0.02, range_std=0.5, scale=1.07, gate=3.0, log="Plaza2"),
+    "kf.sim.tuning_score": dict(
+        speed_std=0.05, turn_std=0.02, noise_per="metre", range_std=0.5, scale=1.07, gate=3.0, log="Plaza2"
+    ),
     "kf.sim.verdict": dict(mean_nees=2.0, band=(1.0, 4.0)),
     # ---------------------------------------------------------------- kf.data: the logs of real robots
     "kf.data.load_plaza": dict(name="Plaza1"),

@@ -207,6 +207,7 @@ def _seeded() -> list:
     needs = {
         "monte_carlo_drift": {"step_std": 0.05, "n": 10, "n_robots": 10},
         "range_particles": {"log": kf.data.load_plaza("Plaza2")},
+        "plaza_family": {"log": kf.data.load_plaza("Plaza2"), "steps": 2, "n_particles": 10},
     }
     found = []
     for space in (kf.sim, kf.demos):

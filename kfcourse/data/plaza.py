@@ -92,6 +92,34 @@ class PlazaLog(Record):
             poses.append(unicycle(poses[-1], u, dt))
         return np.array(poses)
 
+    def only(self, beacons) -> PlazaLog:
+        """The same log with the ranges to ``beacons`` (rows of :attr:`beacons`) alone, the others left out: what a
+        robot that hears fewer beacons would have had (none, ``[]``: a filter over it dead-reckons).  Introduced in
+        chapter 12 (two beacons: a mirror image)."""
+        rows = np.unique(v.vector(beacons, "beacons"))
+        if not np.all((rows == np.round(rows)) & (rows >= 0) & (rows < len(self.beacons))):
+            raise ValueError(f"beacons must be rows of the log's {len(self.beacons)} beacons, got {beacons!r}")
+        keep = np.isin(self.beacon, rows.astype(int))
+        fields = {name: getattr(self, name) for name in self.__dataclass_fields__}
+        fields.update(t_range=self.t_range[keep], beacon=self.beacon[keep], range=self.range[keep])
+        return PlazaLog(**fields)
+
+    def mirrored_start(self, beacons) -> np.ndarray:
+        """The true start reflected across the line through two beacons (rows of :attr:`beacons`): its position
+        and its heading.  Two circles round those beacons meet there as well as at the start, so ranges to them
+        alone cannot tell the two apart.  Introduced in chapter 12."""
+        rows = v.vector(beacons, "beacons", 2)
+        if not np.all((rows == np.round(rows)) & (rows >= 0) & (rows < len(self.beacons))) or rows[0] == rows[1]:
+            raise ValueError(
+                f"beacons must be two different rows of the log's {len(self.beacons)} beacons, got {beacons!r}"
+            )
+        a, b = self.beacons[rows.astype(int)]
+        d = (b - a) / np.hypot(*(b - a))  # the line's direction
+        p = self.truth[0, :2] - a
+        position = a + 2.0 * (p @ d) * d - p  # p reflected: 2 (p . d) d - p, about a
+        heading = 2.0 * np.arctan2(d[1], d[0]) - self.truth[0, 2]  # a direction reflected: 2 phi - theta
+        return np.array([*position, wrap_angle(heading)])
+
     def true_distance(self) -> np.ndarray:
         """(M,) the true distance from the robot to the beacon of each range, the ground truth's position
         interpolated in time to the range's (m)."""

@@ -24,6 +24,7 @@ from .loop_filters import gate_within, localize, loop_filter, process_noise_of_o
 from .loop_records import LoopRun, Track
 from .particle_hallway_run import ParticleHallwayRun, simulate_particle_hallway
 from .particle_lap import ParticleRun, localized, particle_loop
+from .plaza_family import TUNED, PlazaFamily, PlazaRow, plaza_family
 from .range_particles import RangeParticleRun, range_particles
 from .range_run import DATA_SHEET, RangeRun, range_localize, smoothed
 from .robot import DEFAULT_LANDMARKS, RobotRun, loop_controls, readings, simulate_robot
@@ -47,6 +48,7 @@ __all__ = [
     "DATA_SHEET",
     "DEFAULT_LANDMARKS",
     "NEES_BAND",
+    "TUNED",
     "TWO_LANDMARKS",
     "AssociationScan",
     "EkfRun",
@@ -60,6 +62,8 @@ __all__ = [
     "OutlierRun",
     "ParticleHallwayRun",
     "ParticleRun",
+    "PlazaFamily",
+    "PlazaRow",
     "RangeParticleRun",
     "RangeRun",
     "RobotRun",
@@ -94,6 +98,7 @@ __all__ = [
     "nees_band",
     "particle_loop",
     "plain_and_gated",
+    "plaza_family",
     "process_noise",
     "process_noise_of_odometry",
     "range_localize",

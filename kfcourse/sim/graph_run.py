@@ -20,7 +20,7 @@ from typing import TYPE_CHECKING
 import numpy as np
 
 from .. import _validate as v
-from .range_run import DATA_SHEET, INSIDE, START_STD
+from .range_run import DATA_SHEET, START_STD, AgainstTruth
 from .records import Record
 from .scores import nees
 
@@ -36,7 +36,7 @@ BEACON_STD = 1e-3  # the beacons are GTSAM variables held at their surveyed posi
 
 
 @dataclass(frozen=True)
-class FactorGraphRun(Record):
+class FactorGraphRun(AgainstTruth, Record):
     """GTSAM's batch solution over a log, measured against its ground truth.
 
     Rows ``k = 0 .. K`` are poses as in :class:`~kfcourse.sim.RangeRun`: row 0 the start, row k after odometry
@@ -68,22 +68,6 @@ class FactorGraphRun(Record):
     def residual(self) -> np.ndarray:
         """(M,) each range over the scale, minus the distance at the solution (m)."""
         return self.z / self.scale - self.distance
-
-    @property
-    def inside(self) -> np.ndarray:
-        """(K + 1,) bool: the true position lies inside the 3-sigma ellipse."""
-        return self.nees <= INSIDE
-
-    def summary(self) -> dict:
-        """The run in four numbers, as :meth:`RangeRun.summary <kfcourse.sim.RangeRun.summary>`: mean and
-        95th-percentile position error (m), the share of poses inside the 3-sigma ellipse, and the mean
-        position NEES (2 when honest)."""
-        return {
-            "mean_error": float(self.error.mean()),
-            "p95_error": float(np.percentile(self.error, 95)),
-            "inside": float(self.inside.mean()),
-            "mean_nees": float(self.nees.mean()),
-        }
 
 
 def _settings(log, scale, range_std, odometry_std, robust, steps, initial) -> tuple:

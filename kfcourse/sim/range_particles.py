@@ -34,7 +34,7 @@ from ..filters.particle import (
     resample_systematic,
 )
 from ..models import range_only, wrap_angle
-from .range_run import INSIDE, START_STD
+from .range_run import START_STD, AgainstTruth
 from .records import Record
 from .scores import nees
 
@@ -59,7 +59,7 @@ MAX_PARTICLES = 10_000
 
 
 @dataclass(frozen=True)
-class RangeParticleRun(Record):
+class RangeParticleRun(AgainstTruth, Record):
     """A particle filter over a log, measured against its ground truth.
 
     Rows ``k = 0 .. K`` are poses, as in :class:`~kfcourse.sim.RangeRun`: row 0 the start cloud, row k the cloud
@@ -89,11 +89,6 @@ class RangeParticleRun(Record):
     range_std: float  #: the range noise it assumes (m)
     scale: float  #: the radio's scale it assumes
 
-    @property
-    def inside(self) -> np.ndarray:
-        """(K + 1,) bool: the true position lies inside the 3-sigma ellipse."""
-        return self.nees <= INSIDE
-
     def found(self, radius: float = FOUND) -> int | None:
         """The first pose from which the estimate stays within ``radius`` (m) of the true position to the end of
         the run, or None if it is not within it at the end."""
@@ -104,16 +99,13 @@ class RangeParticleRun(Record):
         return None if away[-1] == len(self.error) - 1 else int(away[-1] + 1)
 
     def summary(self, radius: float = FOUND) -> dict:
-        """:class:`~kfcourse.sim.RangeRun`'s four numbers over every pose (mean and 95th-percentile position error
-        in m, share inside the 3-sigma ellipse, mean position NEES), and the search: ``found``, the pose from which
-        the robot stays found (:meth:`found`, None if never), ``found_after`` the time it took (s, NaN if never),
-        and ``error_after`` the mean error from then on (m, NaN if never)."""
+        """:class:`~kfcourse.sim.RangeRun`'s five figures over every pose (mean and 95th-percentile position
+        error in m, share inside the 3-sigma ellipse, mean position NEES and its verdict), and the search:
+        ``found``, the pose from which the robot stays found (:meth:`found`, None if never), ``found_after``
+        the time it took (s, NaN if never), and ``error_after`` the mean error from then on (m, NaN if never)."""
         k = self.found(radius)
         return {
-            "mean_error": float(self.error.mean()),
-            "p95_error": float(np.percentile(self.error, 95)),
-            "inside": float(self.inside.mean()),
-            "mean_nees": float(self.nees.mean()),
+            **super().summary(),
             "found": k,
             "found_after": np.nan if k is None else float(self.t[k] - self.t[0]),
             "error_after": np.nan if k is None else float(self.error[k:].mean()),

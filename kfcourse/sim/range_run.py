@@ -48,8 +48,33 @@ NOISE_PER = ("second", "metre")
 INSIDE = 9.0  # a position NEES at most this: the truth inside the 3-sigma ellipse (chapters 6 and 10)
 
 
+class AgainstTruth:
+    """What a run over a log says of itself against the log's ground truth, from its ``error`` and ``nees``
+    fields (one entry per pose): shared by :class:`RangeRun`, :class:`~kfcourse.sim.RangeParticleRun` and
+    :class:`~kfcourse.sim.FactorGraphRun`."""
+
+    error: np.ndarray
+    nees: np.ndarray
+
+    @property
+    def inside(self) -> np.ndarray:
+        """(K + 1,) bool: the true position lies inside the 3-sigma ellipse."""
+        return self.nees <= INSIDE
+
+    def summary(self) -> dict:
+        """The run in five figures: mean and 95th-percentile position error (m), the share of poses inside the
+        3-sigma ellipse, the mean position NEES (2 when honest) and what it says (:func:`~kfcourse.sim.verdict`)."""
+        return {
+            "mean_error": float(self.error.mean()),
+            "p95_error": float(np.percentile(self.error, 95)),
+            "inside": float(self.inside.mean()),
+            "mean_nees": float(self.nees.mean()),
+            "verdict": verdict(float(self.nees.mean())),
+        }
+
+
 @dataclass(frozen=True)
-class RangeRun(Record):
+class RangeRun(AgainstTruth, Record):
     """An EKF over a log, measured against its ground truth.
 
     Rows ``k = 0 .. K`` are poses: row 0 the start, row k after odometry step k-1 and the ranges that arrived
@@ -92,22 +117,6 @@ class RangeRun(Record):
     def nis(self) -> np.ndarray:
         """(M,) normalised innovation squared y^2 / S: 1 on average when the filter's noise is honest."""
         return self.innovation**2 / self.S
-
-    @property
-    def inside(self) -> np.ndarray:
-        """(K + 1,) bool: the true position lies inside the 3-sigma ellipse."""
-        return self.nees <= INSIDE
-
-    def summary(self) -> dict:
-        """The run in five figures: mean and 95th-percentile position error (m), the share of poses inside the
-        3-sigma ellipse, the mean position NEES (2 when honest) and what it says (:func:`~kfcourse.sim.verdict`)."""
-        return {
-            "mean_error": float(self.error.mean()),
-            "p95_error": float(np.percentile(self.error, 95)),
-            "inside": float(self.inside.mean()),
-            "mean_nees": float(self.nees.mean()),
-            "verdict": verdict(float(self.nees.mean())),
-        }
 
     def fitted_scale(self) -> float:
         """The radio's scale the innovations point to, no ground truth needed: the least-squares ``s`` of
@@ -156,7 +165,7 @@ def range_localize(
     start_std=START_STD,
     steps: int | None = None,
 ) -> RangeRun:
-    r"""Follow a real robot's log with the course's EKF: odometry to predict, ranges to beacons to update.
+    r"""Follow a real robot's log with the course's EKF or UKF: odometry to predict, ranges to beacons to update.
 
     Predict (chapter 8): the unicycle with the step's speed and turn rate, its R the odometry noise
     :math:`M = \mathrm{diag}(\sigma_V^2, \sigma_\omega^2)` mapped into the pose (``process_noise_of_odometry``);

@@ -24,8 +24,9 @@ class TuningScore(Record):
     """A choice of noises, run on the log it was not tuned on."""
 
     log: str  #: the log scored on
-    speed_std: float  #: the speed noise assumed (m/s)
-    turn_std: float  #: the turn-rate noise assumed (rad/s)
+    speed_std: float  #: the speed noise assumed (m/s; per metre driven: m per square-root metre)
+    turn_std: float  #: the turn-rate noise assumed (rad/s; per metre driven: rad per square-root metre)
+    noise_per: str  #: what the odometry noise grows with: "second" or "metre"
     range_std: float  #: the range noise assumed (m)
     scale: float | str  #: the radio's scale assumed, or "online"
     gate: float | None  #: the gate (standard deviations), or None
@@ -46,6 +47,7 @@ class TuningScore(Record):
 def tuning_score(
     speed_std: float = DATA_SHEET["speed_std"],
     turn_std: float = DATA_SHEET["turn_std"],
+    noise_per: str = "second",
     range_std: float = DATA_SHEET["range_std"],
     scale=1.0,
     gate: float | None = None,
@@ -57,7 +59,7 @@ def tuning_score(
 
     Parameters
     ----------
-    speed_std, turn_std, range_std, scale, gate
+    speed_std, turn_std, noise_per, range_std, scale, gate
         As in :func:`~kfcourse.sim.range_localize`.
     log : {"Plaza1", "Plaza2"}
         The log to score on.
@@ -71,7 +73,8 @@ def tuning_score(
 
     if not isinstance(log, str) or log not in PLAZA_RUNS:
         raise ValueError(f"log must be one of {PLAZA_RUNS}, got {log!r}")
-    settings = {"speed_std": speed_std, "turn_std": turn_std, "range_std": range_std, "scale": scale, "gate": gate}
+    settings = {"speed_std": speed_std, "turn_std": turn_std, "noise_per": noise_per, "range_std": range_std}
+    settings.update(scale=scale, gate=gate)
     run = range_localize(load_plaza(log), **settings)
     low, high = NEES_BAND
     summary = run.summary()

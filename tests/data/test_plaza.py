@@ -90,6 +90,26 @@ def test_the_record_is_read_only(log):
         log.range[0] = 0.0
 
 
+def test_a_log_with_fewer_beacons_keeps_only_their_ranges(log):
+    two = log.only([2, 3])
+    assert set(two.beacon.tolist()) == {2, 3} and two.range.size == np.isin(log.beacon, [2, 3]).sum()
+    np.testing.assert_array_equal(two.truth, log.truth)
+    np.testing.assert_array_equal(two.beacons, log.beacons)  # the rows keep their meaning
+    assert log.only([]).range.size == 0
+    for bad in ([4], [-1], [0.5]):
+        with pytest.raises(ValueError, match=r"^beacons must be rows"):
+            log.only(bad)
+
+
+def test_the_mirrored_start_is_as_far_from_both_beacons_as_the_start(log):
+    mirror = log.mirrored_start([2, 3])
+    for b in log.beacons[[2, 3]]:
+        assert np.hypot(*(mirror[:2] - b)) == pytest.approx(np.hypot(*(log.truth[0, :2] - b)), rel=1e-12)
+    assert np.hypot(*(mirror[:2] - log.truth[0, :2])) > 10.0  # elsewhere on the plaza
+    with pytest.raises(ValueError, match=r"^beacons must be two different rows"):
+        log.mirrored_start([2, 2])
+
+
 def test_a_bad_start_is_refused(log):
     with pytest.raises(ValueError, match=r"^start must have length 3"):
         log.dead_reckoning([0.0, 0.0])

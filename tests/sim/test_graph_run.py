@@ -85,7 +85,7 @@ def test_a_part_of_the_log_takes_its_ranges_as_the_filter_does(plaza2):
     np.testing.assert_array_equal(run.step, ekf.step)
     np.testing.assert_array_equal(run.z, ekf.z)
     assert np.abs(run.residual).max() < 5.0  # ranges over the scale, against the solution's distances
-    assert set(run.summary()) == {"mean_error", "p95_error", "inside", "mean_nees"}
+    assert set(run.summary()) == {"mean_error", "p95_error", "inside", "mean_nees", "verdict"}
     with pytest.raises(ValueError, match="read-only"):
         run.mu[0, 0] = 0.0
 

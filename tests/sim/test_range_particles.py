@@ -65,6 +65,15 @@ def test_over_the_whole_log_it_stays_found(plaza2):
     assert 0 < run.resampled.sum() < plaza2.range.size  # resampled now and then, never more than once per range
 
 
+def test_hearing_two_beacons_the_cloud_finds_the_robot_the_ekf_mirrors():
+    """Plaza1 with beacons 2 and 3 alone (where the EKF from the mirrored start follows the mirror image): a global
+    start finds the robot within the first ten minutes, for every seed tried."""
+    two = kf.data.load_plaza("Plaza1").only([2, 3])
+    for seed in range(3):
+        s = kf.sim.range_particles(two, seed=seed, steps=3000).summary()
+        assert s["found_after"] is not None and s["found_after"] < 300.0 and s["error_after"] < 1.0
+
+
 def test_from_a_known_start_it_tracks_the_robot_from_the_first_step(plaza2):
     """The noise that lets a lost cloud find the robot keeps a found one wider than its error: NEES under 2."""
     run = kf.sim.range_particles(plaza2, start=plaza2.truth[0], steps=SHORT)

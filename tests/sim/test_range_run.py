@@ -61,6 +61,30 @@ def test_from_a_start_it_is_not_told_the_ekf_finds_the_robot_on_plaza2(plaza2):
         assert np.median(run.error[1000:]) < 0.5
 
 
+def test_hearing_two_beacons_from_the_mirrored_start_the_ekf_follows_the_mirror_image():
+    """Two circles meet in two points.  Plaza1 with beacons 2 and 3 alone: from the start reflected across their
+    line, even with a first ellipse of 10 m, the EKF follows the reflected path and never comes near the robot;
+    from the true start it follows the robot."""
+    plaza1 = kf.data.load_plaza("Plaza1")
+    two = plaza1.only([2, 3])
+    lost = kf.sim.range_localize(two, scale=1.07, start=plaza1.mirrored_start([2, 3]), start_std=(10.0, 10.0, 1.0))
+    a, b = plaza1.beacons[[2, 3]]
+    d = (b - a) / np.hypot(*(b - a))
+    p = plaza1.truth[:, :2] - a
+    reflected = a + 2.0 * (p @ d)[:, None] * d - p  # the true path reflected across the beacons' line
+    assert np.median(np.hypot(*(lost.mu[:, :2] - reflected).T)) < 3.0
+    assert np.median(lost.error) > 30.0 and lost.error.min() > 3.0
+    assert np.median(kf.sim.range_localize(two, scale=1.07).error) < 0.5
+
+
+def test_with_no_ranges_the_ekf_dead_reckons(plaza2):
+    """The EKF's predictions alone are the log's dead reckoning, pose for pose; only its ellipse is new."""
+    blind = kf.sim.range_localize(plaza2.only([]))
+    np.testing.assert_array_equal(blind.mu, plaza2.dead_reckoning())
+    area = np.sqrt(np.linalg.det(blind.Sig[:, :2, :2]))
+    assert blind.z.size == 0 and area[-1] > 100 * area[0]  # nothing stops the ellipse growing
+
+
 def test_only_an_ekf_run_is_smoothed(plaza2):
     with pytest.raises(ValueError, match=r"^run must be an EKF's RangeRun"):
         kf.sim.smoothed(kf.sim.range_localize(plaza2, filter="ukf", steps=10))

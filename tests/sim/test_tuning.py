@@ -32,6 +32,7 @@ def test_the_nees_band_holds_95_percent_of_an_honest_nees():
     [
         ({}, "over-confident"),  # the data sheet's noises and an unbiased radio
         ({"speed_std": 0.3, "turn_std": 0.1, "range_std": 0.7, "scale": "online"}, "honest"),
+        ({"speed_std": 0.05, "turn_std": 0.01, "noise_per": "metre", "range_std": 0.7, "scale": "online"}, "honest"),
         ({"speed_std": 1.0, "turn_std": 0.5, "range_std": 3.0, "scale": "online"}, "timid"),
     ],
 )
