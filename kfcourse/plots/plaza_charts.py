@@ -6,10 +6,10 @@ r"""Chapter 12's static charts: a real robot's log, its ranges, and filters run 
   other line styles, :data:`RUN_STYLES`).
 - :func:`ranges_chart`: every range against the true distance to its beacon (orange points), the line an honest
   radio would read along (range = distance, grey and dotted like the truth) and the least-squares line through
-  the readings (orange, dash-dot): the radio's scale error.
+  the readings (a darker orange, dash-dot): the radio's scale error.
 - :func:`nees_chart`: each run's position NEES over time on a log scale, against the band an honest filter's
   NEES lies in at 95 % of its steps (:data:`~kfcourse.sim.NEES_BAND`, chi-square with 2 degrees of freedom)
-  and its average, 2.
+  and its average, 2 (grey: guides, not a role).
 
 Each takes records and returns a figure; in a notebook the figure shows itself when it is a cell's last value.
 A run is anything with ``t``, ``mu`` (rows ``[x, y, ...]``), ``error`` and ``nees``, one row per pose of the log:
@@ -144,10 +144,10 @@ def plaza_chart(log, *runs, labels=None, dead_reckoning: bool = True):
     ax.plot(log.truth[:, 0], log.truth[:, 1], label="truth", zorder=1, **TRUTH_STYLE)
     if dead_reckoning:
         off = np.hypot(*(drift[:, :2] - log.truth[:, :2]).T).mean()
-        ax.plot(drift[:, 0], drift[:, 1], label=f"dead reckoning, {off:.1f} m off", **DEAD_RECKONING_STYLE)
+        ax.plot(drift[:, 0], drift[:, 1], label=f"dead reckoning: mean error {off:.1f} m", **DEAD_RECKONING_STYLE)
     for i, (run, name) in enumerate(zip(runs, names, strict=True)):
         mu = np.asarray(run.mu, float)
-        ax.plot(mu[:, 0], mu[:, 1], label=f"{name}, {np.mean(run.error):.2f} m off", **_style(i))
+        ax.plot(mu[:, 0], mu[:, 1], label=f"{name}: mean error {np.mean(run.error):.2f} m", **_style(i))
     landmarks(ax, log.beacons, labels=True, label="beacons", zorder=6)
     ax.legend(loc="lower left", bbox_to_anchor=(0.0, 1.0), ncols=2, fontsize=8, columnspacing=1.2, handlelength=2.5)
     return fig
@@ -157,9 +157,10 @@ def ranges_chart(log):
     """Chapter 12: every range of a Plaza log against the true distance to its beacon.
 
     The readings (orange points, one per range), the line an honest radio's readings would scatter about (range
-    = true distance: grey and dotted, the truth's style) and the least-squares line through the readings (orange,
-    dash-dot), its slope and offset in the legend: about 1.07, a radio that reads 7 % long.  The true distance is
-    ``log.true_distance()``: the ground truth interpolated to each range's time.  Introduced in chapter 12.
+    = true distance: grey and dotted, the truth's style) and the least-squares line through the readings (darker
+    orange, dash-dot), its slope and offset in the legend: about 1.07, a radio that reads 7 % long.  The true
+    distance is ``log.true_distance()``: the ground truth interpolated to each range's time.  Introduced in
+    chapter 12.
 
     Parameters
     ----------
@@ -208,11 +209,11 @@ def _nees_limits(runs) -> tuple[float, float]:
 def nees_chart(*runs, labels=None):
     """Chapter 12: each run's position NEES over time, on a log scale, against an honest filter's band.
 
-    The shaded band is :data:`~kfcourse.sim.NEES_BAND`, where one position NEES of an honest filter lies at 95 %
-    of its steps (chi-square with 2 degrees of freedom: 0.05 to 7.4); the dotted line is its average, 2.  One
-    line per run, in the styles of :func:`plaza_chart`, its mean NEES in the legend.  A NEES of 0 or below the
-    axis is drawn at its bottom, an infinite one (a flat ellipse the truth left) at its top.
-    Introduced in chapter 12.
+    The shaded band (grey: a guide; the runs are teal) is :data:`~kfcourse.sim.NEES_BAND`, where one position NEES
+    of an honest filter lies at 95 % of its steps (chi-square with 2 degrees of freedom: 0.05 to 7.4); the dotted
+    line is its average, 2.  One line per run, in the styles of :func:`plaza_chart`, its mean NEES in the legend.
+    A NEES of 0 or below the axis is drawn at its bottom, an infinite one (a flat ellipse the truth left) at its
+    top.  Introduced in chapter 12.
 
     Parameters
     ----------
@@ -234,12 +235,12 @@ def nees_chart(*runs, labels=None):
     fig, ax = new_figure(8.0, 3.2)
     ax.set_yscale("log")
     band = f"honest: 95 % of steps in {NEES_BAND[0]:.2f} to {NEES_BAND[1]:.1f}"
-    ax.axhspan(*NEES_BAND, color=palette.ESTIMATE, alpha=0.12, lw=0, zorder=0, label=band)
+    ax.axhspan(*NEES_BAND, color=palette.INK, alpha=0.08, lw=0, zorder=0, label=band)  # a guide: no role's colour
     ax.axhline(2.0, color=palette.INK, lw=0.9, ls=":", label="honest average, 2", zorder=1)
     for i, (run, name) in enumerate(zip(runs, names, strict=True)):
         values = np.asarray(run.nees, float)
         shown = np.clip(np.nan_to_num(values, nan=high, posinf=high), low, high)
-        ax.plot(run.t, shown, label=f"{name}, mean NEES {np.mean(values):.3g}", **(_style(i) | {"lw": _nees_width(i)}))
+        ax.plot(run.t, shown, label=f"{name}: mean NEES {np.mean(values):.3g}", **(_style(i) | {"lw": _nees_width(i)}))
     ax.set_ylim(low, high)
     ax.set_xlim(0.0, max(float(run.t[-1]) for run in runs))
     ax.set_xlabel("t (s)")

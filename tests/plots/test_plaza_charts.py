@@ -57,7 +57,7 @@ def test_the_map_alone_is_the_plaza_at_one_scale(plaza2):
     for x, y in np.vstack([plaza2.beacons, plaza2.truth[:, :2], plaza2.dead_reckoning()[:, :2]]):
         assert x0 < x < x1 and y0 < y < y1
     off = np.hypot(*(plaza2.dead_reckoning()[:, :2] - plaza2.truth[:, :2]).T).mean()
-    assert legend_texts(ax) == ["truth", f"dead reckoning, {off:.1f} m off", "beacons"]
+    assert legend_texts(ax) == ["truth", f"dead reckoning: mean error {off:.1f} m", "beacons"]
     assert kf.plots.plaza_chart(plaza2, dead_reckoning=False).axes[0].get_legend() is not None
     assert len(paths(kf.plots.plaza_chart(plaza2, dead_reckoning=False).axes[0])) == 1
 
@@ -77,13 +77,13 @@ def test_each_run_is_a_path_in_its_own_style_named_in_the_legend(plaza2, runs):
     assert dashed.get_linestyle() == "--"
     labels = legend_texts(ax)
     for name, run in zip(["EKF", "RTS smoother", "UKF"], runs, strict=True):
-        assert f"{name}, {run.error.mean():.2f} m off" in labels
+        assert f"{name}: mean error {run.error.mean():.2f} m" in labels
 
 
 def test_runs_without_labels_are_named_by_their_filter(plaza2, runs):
     ekf, smooth, ukf = runs
     labels = legend_texts(kf.plots.plaza_chart(plaza2, ekf, smooth, ukf).axes[0])
-    assert [label.split(",")[0] for label in labels[2:5]] == ["EKF (1)", "EKF (2)", "UKF"]
+    assert [label.split(":")[0] for label in labels[2:5]] == ["EKF (1)", "EKF (2)", "UKF"]
     assert kf.plots.plaza_charts.run_label(ukf) == "UKF"
 
 
@@ -160,8 +160,8 @@ def test_nees_chart_draws_each_runs_nees_on_a_log_scale_against_the_95_band(runs
     labels = legend_texts(ax)
     assert labels[0] == "honest: 95 % of steps in 0.05 to 7.4" and labels[1] == "honest average, 2"
     assert labels[2:] == [
-        f"EKF, mean NEES {runs[0].nees.mean():.3g}",
-        f"RTS smoother, mean NEES {runs[1].nees.mean():.3g}",
+        f"EKF: mean NEES {runs[0].nees.mean():.3g}",
+        f"RTS smoother: mean NEES {runs[1].nees.mean():.3g}",
     ]
 
 
