@@ -201,6 +201,17 @@ class Invariant:
     says: str  #: what an answer that breaks it does, as the verdict says it: "your bel does not sum to 1"
 
 
+def moved(index: int, by: float) -> Callable:
+    """A probe's move: the array with entry ``index`` moved by ``by``."""
+
+    def move(a):
+        a = np.array(a, dtype=float)
+        a[index] += by
+        return a
+
+    return move
+
+
 def sums_to_one(name: str, why: str) -> Invariant:
     """``name`` sums to 1 (``why``: what makes it)."""
     return Invariant(

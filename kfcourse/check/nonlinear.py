@@ -7,7 +7,7 @@ import math
 import numpy as np
 
 from .. import models
-from ._core import Case, CheckResult, Probe, Step, Variant, angle_in_range, non_negative, run_check
+from ._core import Case, CheckResult, Probe, Step, Variant, angle_in_range, moved, non_negative, run_check
 
 ROBOT = np.array([1.0, 2.0, 0.0])  # chapter 7's worked example: robot (1, 2, 0) ...
 LANDMARK = np.array([4.0, 6.0])  # ... and landmark (4, 6)
@@ -41,34 +41,23 @@ def _sensor_cases(rng) -> list[Case]:
     return cases
 
 
-def _moved(index: int, by: float):
-    """A probe's move: the array with entry ``index`` moved by ``by``."""
-
-    def move(a):
-        a = np.array(a, dtype=float)
-        a[index] += by
-        return a
-
-    return move
-
-
 # Each part of the pose and of the landmark moved alone (run_check's diagnosis): r follows the offset
 # (Δx, Δy) alone, φ the offset and θ; H follows the offset alone, never θ.
 OFFSET = "Δx = m_x − x and Δy = m_y − y, and through them r = √q and φ = atan2(Δy, Δx) − θ"
 SENSOR_PROBES = (
-    Probe("state", _moved(0, 0.5), OFFSET, "the robot's x"),
-    Probe("state", _moved(1, 0.5), OFFSET, "the robot's y"),
-    Probe("state", _moved(2, 0.3), "the bearing only, φ = atan2(Δy, Δx) − θ", "the heading θ"),
-    Probe("landmark", _moved(0, 0.5), OFFSET, "the landmark's m_x"),
-    Probe("landmark", _moved(1, 0.5), OFFSET, "the landmark's m_y"),
+    Probe("state", moved(0, 0.5), OFFSET, "the robot's x"),
+    Probe("state", moved(1, 0.5), OFFSET, "the robot's y"),
+    Probe("state", moved(2, 0.3), "the bearing only, φ = atan2(Δy, Δx) − θ", "the heading θ"),
+    Probe("landmark", moved(0, 0.5), OFFSET, "the landmark's m_x"),
+    Probe("landmark", moved(1, 0.5), OFFSET, "the landmark's m_y"),
 )
 ENTRIES = "every entry of H but ∂φ/∂θ = −1, through Δx, Δy and q"
 JACOBIAN_PROBES = (
-    Probe("state", _moved(0, 0.5), ENTRIES, "the robot's x"),
-    Probe("state", _moved(1, 0.5), ENTRIES, "the robot's y"),
-    Probe("state", _moved(2, 0.3), "no entry of H (φ has − θ, whose derivative is −1)", "the heading θ"),
-    Probe("landmark", _moved(0, 0.5), ENTRIES, "the landmark's m_x"),
-    Probe("landmark", _moved(1, 0.5), ENTRIES, "the landmark's m_y"),
+    Probe("state", moved(0, 0.5), ENTRIES, "the robot's x"),
+    Probe("state", moved(1, 0.5), ENTRIES, "the robot's y"),
+    Probe("state", moved(2, 0.3), "no entry of H (φ has − θ, whose derivative is −1)", "the heading θ"),
+    Probe("landmark", moved(0, 0.5), ENTRIES, "the landmark's m_x"),
+    Probe("landmark", moved(1, 0.5), ENTRIES, "the landmark's m_y"),
 )
 
 
@@ -335,10 +324,10 @@ MOTION_STEPS = (
 )
 ARC = "x' and y' along the arc (or the straight line), and θ' = θ + ωΔt"
 MOTION_PROBES = (
-    Probe("state", _moved(0, 0.5), "x' = x + ..., and nothing else", "the robot's x"),
-    Probe("state", _moved(2, 0.3), "every line: the arc's direction and θ' = θ + ωΔt", "the heading θ"),
-    Probe("u", _moved(0, 0.5), "x' and y', the distance driven (V/ω on the arc, VΔt on the line)", "the speed V"),
-    Probe("u", _moved(1, 0.2), ARC, "the turn rate ω"),
+    Probe("state", moved(0, 0.5), "x' = x + ..., and nothing else", "the robot's x"),
+    Probe("state", moved(2, 0.3), "every line: the arc's direction and θ' = θ + ωΔt", "the heading θ"),
+    Probe("u", moved(0, 0.5), "x' and y', the distance driven (V/ω on the arc, VΔt on the line)", "the speed V"),
+    Probe("u", moved(1, 0.2), ARC, "the turn rate ω"),
     Probe("dt", lambda dt: dt * 1.5, ARC, "the time step Δt"),
 )
 

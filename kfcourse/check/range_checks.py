@@ -49,6 +49,7 @@ from ._core import (
     _quietly,
     _where,
     is_covariance,
+    moved,
     random_covariance,
     run_check,
 )
@@ -296,20 +297,9 @@ STEPS = (
 )
 
 
-def _moved(index: int, by: float):
-    """A probe's move: the array with entry ``index`` moved by ``by``."""
-
-    def move(a):
-        a = np.array(a, dtype=float)
-        a[index] += by
-        return a
-
-    return move
-
-
 PROBES = (
-    Probe("mu_bar", _moved(0, 0.3), "ẑ = r and H (1), and through them S, K (2), μ (3) and Σ (4)", "the robot's x"),
-    Probe("mu_bar", _moved(2, 0.3), "μ's heading alone: neither ẑ nor H depends on θ", "the heading θ of mu_bar"),
+    Probe("mu_bar", moved(0, 0.3), "ẑ = r and H (1), and through them S, K (2), μ (3) and Σ (4)", "the robot's x"),
+    Probe("mu_bar", moved(2, 0.3), "μ's heading alone: neither ẑ nor H depends on θ", "the heading θ of mu_bar"),
     Probe("Sig_bar", lambda S: S + 0.05 * np.eye(3), "S and K (2), and Σ = (I − KH)Σ̄ (4)"),
     Probe("z", lambda z: z + 0.2, "the innovation z − ẑ of the mean (3) alone"),
     Probe("beacon", lambda b: b + np.array([0.3, -0.2]), "ẑ = r and H (1), and through them (2)-(4)"),

@@ -83,14 +83,31 @@ class PlazaLog(Record):
         and turn over its duration, for :func:`~kfcourse.unicycle` with that step's ``dt``."""
         return np.column_stack([self.distance, self.turn]) / self.dt[:, None]
 
-    def dead_reckoning(self, start=None) -> np.ndarray:
-        """(K + 1, 3) the poses the odometry alone gives, step by step through :func:`~kfcourse.unicycle`
-        (chapter 8's motion model), from ``start`` ``[x, y, heading]``, by default the true start."""
+    def dead_reckoning(self, start=None, steps: int | None = None) -> np.ndarray:
+        """(steps + 1, 3) the poses the odometry alone gives, step by step through :func:`~kfcourse.unicycle`
+        (chapter 8's motion model), from ``start`` ``[x, y, heading]``, by default the true start, over the first
+        ``steps`` odometry steps (by default all K)."""
         pose = self.truth[0] if start is None else v.vector(start, "start", 3)
+        steps = self.step_count(steps)
         poses = [pose]
-        for u, dt in zip(self.controls(), self.dt, strict=True):
+        for u, dt in zip(self.controls()[:steps], self.dt[:steps], strict=True):
             poses.append(unicycle(poses[-1], u, dt))
         return np.array(poses)
+
+    def step_count(self, steps: int | None = None) -> int:
+        """``steps``, checked as a count of this log's odometry steps (1 to K); None is all K of them."""
+        K = len(self.distance)
+        steps = K if steps is None else v.whole(steps, "steps", 1)
+        if steps > K:
+            raise ValueError(f"steps must be at most {K}, the log's odometry steps; got {steps}")
+        return steps
+
+    def range_steps(self, steps: int) -> tuple[np.ndarray, np.ndarray]:
+        """The ranges a filter over the first ``steps`` odometry steps uses, and when: their indices (those that
+        arrived by pose ``steps``), and for each the pose (1 to ``steps``) after whose prediction it is used,
+        the first whose time is not before the range's."""
+        ranges = np.flatnonzero(self.t_range <= self.t_truth[steps])
+        return ranges, np.searchsorted(self.t_truth, self.t_range[ranges], side="left").clip(1, steps)
 
     def only(self, beacons) -> PlazaLog:
         """The same log with the ranges to ``beacons`` (rows of :attr:`beacons`) alone, the others left out: what a

@@ -20,9 +20,8 @@ from typing import TYPE_CHECKING
 import numpy as np
 
 from .. import _validate as v
-from .range_run import DATA_SHEET, START_STD, AgainstTruth
+from .range_run import DATA_SHEET, START_STD, AgainstTruth, against_truth, log_steps
 from .records import Record
-from .scores import nees
 
 if TYPE_CHECKING:
     from ..data import PlazaLog
@@ -71,20 +70,13 @@ class FactorGraphRun(AgainstTruth, Record):
 
 
 def _settings(log, scale, range_std, odometry_std, robust, steps, initial) -> tuple:
-    from ..data import PlazaLog  # here, not above: kfcourse.data builds its record from kfcourse.sim's
-
-    if not isinstance(log, PlazaLog):
-        raise ValueError(f"log must be a PlazaLog (kf.data.load_plaza), got {type(log).__name__}")
+    steps = log_steps(log, steps)
     scale = v.positive(scale, "scale", "a scale")
     range_std = v.positive(range_std, "range_std", "a standard deviation", "m")
     odometry_std = v.vector(odometry_std, "odometry_std", 3)
     if not np.all(odometry_std > 0):
         raise ValueError(f"odometry_std must be standard deviations > 0 (m/s, m/s, rad/s), got {odometry_std}")
     robust = v.flag(robust, "robust")
-    K = len(log.distance)
-    steps = K if steps is None else v.whole(steps, "steps", 1)
-    if steps > K:
-        raise ValueError(f"steps must be at most {K}, the log's odometry steps; got {steps}")
     if initial is not None:
         initial = v.matrix(initial, "initial")
         if initial.shape[0] < steps + 1 or initial.shape[1] != 3:
@@ -175,8 +167,7 @@ def factor_graph(
         z=log.range[ranges],
         distance=np.hypot(*(mu[step, :2] - b).T),
         beacons=log.beacons,
-        error=np.hypot(*(truth[:, :2] - mu[:, :2]).T),
-        nees=nees(truth[:, :2], mu[:, :2], Sig[:, :2, :2]),
+        **against_truth(truth, mu, Sig),
         iterations=found["iterations"],
         initial_error=found["initial_error"],
         final_error=found["final_error"],
@@ -192,10 +183,9 @@ def _solve(gtsam, log, steps: int, initial, *settings) -> dict:
     """Build the graph of the first ``steps`` odometry steps of ``log`` (``settings``: scale, range_std,
     odometry_std, robust), solve it with Levenberg–Marquardt from ``initial`` or the dead reckoning, and compute
     the covariances: the solution, which ranges it used and on which pose, and how the optimiser went."""
-    ranges = np.flatnonzero(log.t_range <= log.t_truth[steps])  # the ranges that arrived by the last step
-    step = np.searchsorted(log.t_truth, log.t_range[ranges], side="left").clip(1, steps)  # range_localize's
+    ranges, step = log.range_steps(steps)  # the ranges of these steps, on the poses range_localize uses them at
     graph = _graph(gtsam, log, steps, ranges, step, *settings)
-    poses = log.dead_reckoning()[: steps + 1] if initial is None else initial[: steps + 1]
+    poses = log.dead_reckoning(steps=steps) if initial is None else initial[: steps + 1]
     values = _initial_values(gtsam, poses, log.beacons)
     optimizer = gtsam.LevenbergMarquardtOptimizer(graph, values, gtsam.LevenbergMarquardtParams())
     solution = optimizer.optimize()

@@ -15,9 +15,8 @@ from typing import TYPE_CHECKING
 
 import numpy as np
 
-from .. import _validate as v
 from .range_particles import FOUND, plaza_box, range_particles
-from .range_run import range_localize, smoothed
+from .range_run import log_steps, range_localize, smoothed
 from .records import Record, text_table
 
 if TYPE_CHECKING:
@@ -117,13 +116,7 @@ def plaza_family(log: PlazaLog, *, n_particles: int = 1000, seed: int = 0, steps
     -------
     PlazaFamily
     """
-    from ..data import PlazaLog  # here, not above: kfcourse.data builds its record from kfcourse.sim's
-
-    if not isinstance(log, PlazaLog):
-        raise ValueError(f"log must be a PlazaLog (kf.data.load_plaza), got {type(log).__name__}")
-    steps = len(log.distance) if steps is None else v.whole(steps, "steps", 1)
-    if steps > len(log.distance):
-        raise ValueError(f"steps must be at most {len(log.distance)}, the log's odometry steps; got {steps}")
+    steps = log_steps(log, steps)
     middle = [*plaza_box(log).mean(axis=1), 0.0]
     lost = {"start": middle, "start_std": LOST, "steps": steps}
     rows = [

@@ -34,9 +34,8 @@ from ..filters.particle import (
     resample_systematic,
 )
 from ..models import range_only, wrap_angle
-from .range_run import START_STD, AgainstTruth
+from .range_run import START_STD, AgainstTruth, against_truth, log_steps
 from .records import Record
-from .scores import nees
 
 if TYPE_CHECKING:
     from ..data import PlazaLog
@@ -128,17 +127,10 @@ def range_weight(particles, z, beacon, scale: float, range_std: float, log_w) ->
 
 def _settings(log, n_particles, seed, speed_std, turn_std, range_std, scale, start, steps, keep) -> dict:
     """The settings of :func:`range_particles`, checked, by the names of :class:`RangeParticleRun`'s fields."""
-    from ..data import PlazaLog  # here, not above: kfcourse.data builds its record from kfcourse.sim's
-
-    if not isinstance(log, PlazaLog):
-        raise ValueError(f"log must be a PlazaLog (kf.data.load_plaza), got {type(log).__name__}")
+    steps = log_steps(log, steps)
     N = v.whole(n_particles, "n_particles", 1)
     if N > MAX_PARTICLES:
         raise ValueError(f"n_particles must be a whole number from 1 to {MAX_PARTICLES}, got {N}")
-    K = len(log.distance)
-    steps = K if steps is None else v.whole(steps, "steps", 1)
-    if steps > K:
-        raise ValueError(f"steps must be at most {K}, the log's odometry steps; got {steps}")
     keep = KEEP if keep is None else keep
     if isinstance(keep, str) or np.ndim(keep) != 1 or not all(isinstance(k, int | np.integer) for k in keep):
         raise ValueError(f"keep must be a list of whole numbers of steps, got {keep!r}")
@@ -229,8 +221,7 @@ def range_particles(
         truth=truth,
         mu=mu,
         Sig=Sig,
-        error=np.hypot(*(truth[:, :2] - mu[:, :2]).T),
-        nees=nees(truth[:, :2], mu[:, :2], Sig[:, :2, :2]),
+        **against_truth(truth, mu, Sig),
         beacons=log.beacons,
         box=box,
         **track,
@@ -245,8 +236,7 @@ def _follow(log, steps: int, x: np.ndarray, rng, s: dict) -> dict:
     N, kept = s["n_particles"], s["kept"]
     M = np.diag([s["speed_std"] ** 2, s["turn_std"] ** 2])
     controls, dt = log.controls()[:steps], log.dt[:steps]
-    ranges = np.flatnonzero(log.t_range <= log.t_truth[steps])  # the ranges that arrived by the last step
-    step = np.searchsorted(log.t_truth, log.t_range[ranges], side="left").clip(1, steps)  # as range_localize's
+    ranges, step = log.range_steps(steps)  # the ranges of these steps, used as range_localize uses them
     first = np.searchsorted(step, np.arange(steps + 2))  # ranges first[k] .. first[k + 1] - 1 belong to step k
     mu, Sig = np.empty((steps + 1, 3)), np.empty((steps + 1, 3, 3))
     ess, resampled = np.full(steps + 1, float(N)), np.zeros(steps + 1, dtype=bool)

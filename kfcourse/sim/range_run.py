@@ -125,11 +125,27 @@ class RangeRun(AgainstTruth, Record):
         return float(z @ d / (d @ d))
 
 
-def _settings(log, filter, speed_std, turn_std, noise_per, range_std, scale, gate, start, start_std, steps) -> tuple:
+def log_steps(log, steps: int | None) -> int:
+    """``steps`` checked against ``log``, itself checked as a :class:`~kfcourse.data.PlazaLog`: the first ``steps``
+    odometry steps to follow (None: all of them).  Every run over a log checks its first two arguments here."""
     from ..data import PlazaLog  # here, not above: kfcourse.data builds its record from kfcourse.sim's
 
     if not isinstance(log, PlazaLog):
         raise ValueError(f"log must be a PlazaLog (kf.data.load_plaza), got {type(log).__name__}")
+    return log.step_count(steps)
+
+
+def against_truth(truth, mu, Sig) -> dict:
+    """A run's ``error`` (distance between the estimated and the true position, m) and position ``nees``, one
+    entry per pose, as every :class:`AgainstTruth` record stores them."""
+    return {
+        "error": np.hypot(*(truth[:, :2] - mu[:, :2]).T),
+        "nees": nees(truth[:, :2], mu[:, :2], Sig[:, :2, :2]),
+    }
+
+
+def _settings(log, filter, speed_std, turn_std, noise_per, range_std, scale, gate, start, start_std, steps) -> tuple:
+    steps = log_steps(log, steps)
     if not isinstance(filter, str) or filter not in FILTERS:
         raise ValueError(f"filter must be one of {FILTERS}, got {filter!r}")
     speed_std = v.positive(speed_std, "speed_std", "a standard deviation", "m/s")
@@ -144,10 +160,6 @@ def _settings(log, filter, speed_std, turn_std, noise_per, range_std, scale, gat
     start_std = v.vector(start_std, "start_std", 3)
     if not np.all(start_std > 0):
         raise ValueError(f"start_std must hold standard deviations > 0 (m, m, rad), got {start_std.tolist()}")
-    K = len(log.distance)
-    steps = K if steps is None else v.whole(steps, "steps", 1)
-    if steps > K:
-        raise ValueError(f"steps must be at most {K}, the log's odometry steps; got {steps}")
     return filter, speed_std, turn_std, noise_per, range_std, scale, gate, start, start_std, steps
 
 
@@ -235,8 +247,7 @@ def _record(log, filter: str, steps: int, track: dict, settings: dict) -> RangeR
         beacon=log.beacon[track["ranges"]],
         z=log.range[track["ranges"]],
         beacons=log.beacons,
-        error=np.hypot(*(truth[:, :2] - mus[:, :2]).T),
-        nees=nees(truth[:, :2], mus[:, :2], Sigs[:, :2, :2]),
+        **against_truth(truth, mus, Sigs),
         **settings,
         **{name: track[name] for name in shared},
     )
@@ -253,8 +264,7 @@ def _follow(log, steps: int, mu, Sig, filter_steps: tuple, gate) -> dict:
     mu_bar, Sig_bar = np.empty((steps + 1, n)), np.empty((steps + 1, n, n))
     mus, Sigs = np.empty_like(mu_bar), np.empty_like(Sig_bar)
     mu_bar[0], Sig_bar[0], mus[0], Sigs[0] = mu, Sig, mu, Sig
-    ranges = np.flatnonzero(log.t_range <= log.t_truth[steps])  # the ranges that arrived by the last step
-    step = np.searchsorted(log.t_truth, log.t_range[ranges], side="left").clip(1, steps)  # after which predict
+    ranges, step = log.range_steps(steps)  # the ranges of these steps, and the pose after whose predict each comes
     distance, z_hat, S = np.empty(ranges.size), np.empty(ranges.size), np.empty(ranges.size)
     used = np.zeros(ranges.size, dtype=bool)
     i = 0
@@ -359,7 +369,6 @@ def smoothed(run: RangeRun) -> RangeRun:
     fields.update(
         mu=mu_s,
         Sig=Sig_s,
-        error=np.hypot(*(run.truth[:, :2] - mu_s[:, :2]).T),
-        nees=nees(run.truth[:, :2], mu_s[:, :2], Sig_s[:, :2, :2]),
+        **against_truth(run.truth, mu_s, Sig_s),
     )
     return RangeRun(**fields)

@@ -70,6 +70,7 @@ def test_the_odometry_as_controls_drives_the_unicycle_of_chapter_8(log):
     np.testing.assert_allclose(omega * log.dt, log.turn, rtol=1e-12, atol=1e-15)
     start = [1.0, -2.0, 0.5]
     np.testing.assert_array_equal(log.dead_reckoning(start)[0], start)
+    np.testing.assert_array_equal(log.dead_reckoning(start, steps=10), log.dead_reckoning(start)[:11])
 
 
 def test_the_ranges_read_seven_percent_long(log):
