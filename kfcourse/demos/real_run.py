@@ -1,11 +1,12 @@
 """Chapter 12: a filter over a real robot's log, the Plaza2 run, and the settings that make it honest.
 
-A run over the whole log costs 1.3 s (EKF) to 2.3 s (PF, N = 1000): far more than a control may take.  So
-the module keeps the last :data:`KEEP_RUNS` runs made, by their settings, for every real-run demo of the kernel
-(the trust sliders move in steps of ×√10, so a setting comes back), and a setting not run yet runs in the
-demo's worker thread: the change is answered at once with the truth and the ranges and the words "running the
-PF over the log…", and the run is drawn when it is done.  Moving in time only redraws.  The first run, and
-every run without an event loop (a script, a test), is made at once.
+A run over the whole log costs 1.3 s (EKF) to 2.5 s (PF, N = 1000): far more than a control may take.  So
+each demo's model keeps the last :data:`KEEP_RUNS` runs it made, by their settings (the trust sliders move in
+steps of ×√10, so a setting comes back); nothing is kept at module level, and two demos share no run.  A
+setting not run yet runs in the demo's worker thread: the change is answered at once with the truth and the
+ranges and the words "running the PF over the log…", and the run is drawn when it is done.  Moving in time
+only redraws.  The first run, and every run without an event loop (a script, a test), is made at once where it
+is first asked for: a script that changes three settings, then looks, makes one run.
 """
 
 from __future__ import annotations
@@ -25,6 +26,7 @@ from ..plots.style import FigureRenderer
 from ..sim.range_particles import PF_NOISE, SCALE, range_particles
 from ..sim.range_run import range_localize, smoothed
 from ..sim.scores import HONEST_NEES, verdict
+from ..sim.tuning import NEES_BAND
 from ._base import Demo, shown, slider
 
 LOG = "Plaza2"  # 410 s, 1.35 km, 4 090 odometry steps and 1 816 ranges
@@ -44,28 +46,17 @@ TRUST_RANGE = (-2.0, 2.0)  # log10 of the filter's R and Q against its tuning: 0
 TRUST_STEP = 0.5  # in log10: nine settings per slider, each a run the model keeps
 SLIDER_FORMAT = ".2g"
 N_PARTICLES = 1000
-KEEP_RUNS = 32  # runs kept, shared by every real-run demo of the kernel: about 1 MB each
+KEEP_RUNS = 32  # runs each model keeps, the least recently used dropped first: about 1 MB each
 IMAGE_WIDTH = 460  # CSS px: the picture beside the column of controls, within a laptop's 848 px
 COLUMN_WIDTH = 340  # CSS px
 
 
-_KEPT: OrderedDict = OrderedDict()  # the runs made, by their settings (RealRunModel.key), latest used last
-
-
-def _kept(key: tuple):
-    """The run kept for ``key``, or None; on the event loop's thread only, as :func:`_keep`."""
-    run = _KEPT.get(key)
-    if run is not None:
-        _KEPT.move_to_end(key)
-    return run
-
-
-def _keep(key: tuple, run) -> None:
-    """Keep ``run`` for ``key``, dropping the runs least recently used beyond :data:`KEEP_RUNS`."""
-    _KEPT[key] = run
-    _KEPT.move_to_end(key)
-    while len(_KEPT) > KEEP_RUNS:
-        _KEPT.popitem(last=False)
+def _running_loop():
+    """The event loop running in this thread (the kernel's), or None (a script, a test)."""
+    try:
+        return asyncio.get_running_loop()
+    except RuntimeError:
+        return None
 
 
 class RealRunModel:
@@ -87,11 +78,18 @@ class RealRunModel:
     frame : int
         The second shown; ``row`` is the last pose at or before it.
     run : RangeRun, RangeParticleRun or None
-        The run with these settings, or None while it is being made.
+        The run with these settings, or None while it is being made (or if it failed).  Without an event loop,
+        and for the first picture, it is made at once when first read.
     smooth : RangeRun or None
-        The smoother over ``run`` when shown and ready.
+        The smoother over ``run`` when shown (EKF runs) and ready.
     on_ready : callable
         Called on the event loop when a run made in the background is drawn; the wiring sets it.
+
+    Notes
+    -----
+    The runs made are the model's own: an ordered dict by their settings (:meth:`key`), the one used last at
+    its end, at most :data:`KEEP_RUNS` of them.  Only the event loop's thread reads or writes it (or the one
+    thread of a script); the worker thread is handed what it needs and hands its run back to the loop.
     """
 
     def __init__(self, seed: int = 0):
@@ -103,10 +101,11 @@ class RealRunModel:
         self.known_start = True
         self.frame = FIRST_FRAME
         self.on_ready: Callable[[], None] = lambda: None
+        self._runs: OrderedDict = OrderedDict()  # the runs made, by their settings (key), latest used last
         self._worker = ThreadPoolExecutor(max_workers=1, thread_name_prefix="real-run")
         self._busy = None  # the settings being run in the background, if any
         self._failed: set = set()  # settings whose run raised: not tried again
-        self._rerun(now=True)  # the first picture shows a run
+        self._first = True  # the first run asked for is made at once, even on an event loop: the first picture
 
     # --- settings ---------------------------------------------------------------------------------
 
@@ -124,6 +123,20 @@ class RealRunModel:
         if kind == "pf":
             return kind, False, False
         return kind, scale or self.scale, gate or self.gate
+
+    def _kept(self, key: tuple):
+        """The run kept for ``key``, or None; on the event loop's thread only, as :meth:`_keep`."""
+        run = self._runs.get(key)
+        if run is not None:
+            self._runs.move_to_end(key)
+        return run
+
+    def _keep(self, key: tuple, run) -> None:
+        """Keep ``run`` for ``key``, dropping the runs least recently used beyond :data:`KEEP_RUNS`."""
+        self._runs[key] = run
+        self._runs.move_to_end(key)
+        while len(self._runs) > KEEP_RUNS:
+            self._runs.popitem(last=False)
 
     def _make(self, key: tuple, base=None):
         """The run with the settings ``key``: the course's filters over the whole log, or the smoother over
@@ -153,51 +166,65 @@ class RealRunModel:
             keys.append(self.key(smooth=True))
         return keys
 
-    def _rerun(self, now: bool = False) -> None:
-        """Make the runs the settings need: at once ``now`` or without an event loop, else in the worker thread."""
-        missing = [key for key in self._wanted() if _kept(key) is None and key not in self._failed]
-        if not missing:
+    def _rerun(self) -> None:
+        """On an event loop, have the worker thread make the runs the settings need that are not kept, one at a
+        time; without one, nothing: each run is made at once when it is first asked for (:meth:`_ready`)."""
+        loop = _running_loop()
+        if loop is None or self._busy is not None:
             return
-        try:
-            loop = None if now else asyncio.get_running_loop()
-        except RuntimeError:
-            loop = None
-        if loop is None:
-            for key in missing:
-                _keep(key, self._make(key, _kept((*key[:-1], False))))
-            return
-        if self._busy is None:
+        missing = [key for key in self._wanted() if self._kept(key) is None and key not in self._failed]
+        if missing:
             self._busy = missing[0]
-            base = _kept((*missing[0][:-1], False))  # the smoother's input, read here: _KEPT is the loop's
+            base = self._kept((*missing[0][:-1], False))  # the smoother's input, read here: the runs are the loop's
             # Once the change's picture is sent: the worker holds the GIL most of the time it runs
             loop.call_soon(self._worker.submit, self._work, missing[0], base, loop)
 
+    def _ready(self, key: tuple):
+        """The run for ``key``: the one kept; else, without an event loop or for the demo's first picture, made at
+        once; else None (the worker is making it, or it failed)."""
+        run = self._kept(key)
+        if run is not None or key in self._failed or (_running_loop() is not None and not self._first):
+            return run
+        self._first = False
+        base = self._ready((*key[:-1], False)) if key[-1] else None  # the smoother's: over the filter's run
+        run = self._attempt(key, base)
+        if run is None:
+            self._failed.add(key)
+        else:
+            self._keep(key, run)
+        return run
+
+    def _attempt(self, key: tuple, base):
+        """The run for ``key`` (:meth:`_make`), or None if it raised: a run that fails must neither leave the demo
+        waiting for ever nor raise out of a control; it is said (:meth:`busy`) and not tried again."""
+        try:
+            return self._make(key, base)
+        except Exception:
+            return None
+
     def _work(self, key: tuple, base, loop) -> None:
         """In the worker thread: make one run, then hand it to the event loop."""
-        try:
-            run = self._make(key, base)
-        except Exception:  # a run that fails must not leave the demo waiting for ever: it is said, not retried
-            run = None
-        loop.call_soon_threadsafe(self._made, key, run)
+        loop.call_soon_threadsafe(self._made, key, self._attempt(key, base))
 
     def _made(self, key: tuple, run) -> None:
-        """On the event loop: keep the run, start the next one the settings need, redraw if it is shown."""
+        """On the event loop: keep the run (or note that it failed), start the next one the settings need, redraw
+        if it is shown."""
         self._busy = None
         if run is None:
             self._failed.add(key)
         else:
-            _keep(key, run)
+            self._keep(key, run)
         self._rerun()  # the settings may have moved on meanwhile: make what they need now
         if key in self._wanted():
             self.on_ready()
 
     @property
     def run(self):
-        return _kept(self.key())
+        return self._ready(self.key())
 
     @property
     def smooth(self):
-        return _kept(self.key(smooth=True)) if self.smoothed else None
+        return self._ready(self.key(smooth=True)) if self.smoothed and FILTERS[self.filter][0] == "ekf" else None
 
     def busy(self) -> str:
         """What the picture says while the run is not ready."""
@@ -257,8 +284,10 @@ class RealRunModel:
         return log.beacons[log.beacon[i]], log.range[i], used
 
     def describe(self) -> str:
-        """The time shown, the filter's error there and whether the truth is inside its ellipse, the ranges of
-        that second, then the whole run's mean error and what its NEES says (:func:`~kfcourse.sim.verdict`)."""
+        """The time shown, the ranges of that second, the filter's error there and whether the truth is inside its
+        3σ ellipse (a position NEES of at most 9, :attr:`~kfcourse.sim.RangeRun.inside`), then the whole run's
+        mean error and what its mean NEES says (:func:`~kfcourse.sim.verdict`: honest within
+        :data:`~kfcourse.sim.HONEST_NEES`)."""
         k, run = self.row, self.run
         _, ranges, used = self.arrivals()
         refused = int(np.count_nonzero(~used))
@@ -267,14 +296,22 @@ class RealRunModel:
         at = f"At t = {self.frame} s"
         settings = self.changed()
         name = f"the {self.filter}" + (f" ({settings})" if settings else "")
+        if run is None and self.key() in self._failed:
+            return f"{at}: {heard}; {name} failed on this setting, so no estimate is drawn: choose another setting."
         if run is None:
             return f"{at}: {heard}; {name} is still running over the log, its estimate comes when it is done."
-        inside = "inside" if run.nees[k] <= 4.0 else "outside"  # the drawn 2σ ellipse: a NEES of at most 2²
+        inside = "inside" if run.inside[k] else "outside"  # the drawn 3σ ellipse: a NEES of at most 3²
         mean_nees = float(np.mean(run.nees))
+        if np.isfinite(mean_nees):
+            nees_said = f"mean NEES {mean_nees:.3g}"
+        else:  # a cloud collapsed onto one particle: a flat ellipse the truth is off (kf.sim.nees)
+            flat = int(np.count_nonzero(~np.isfinite(run.nees)))
+            poses = f"{flat} pose{'s' if flat != 1 else ''}"
+            nees_said = f"mean NEES without bound (at {poses} its ellipse is flat, the truth off it)"
         said = (
-            f"{at}: {heard}; {name} is {shown(float(run.error[k]), '.2f')} m off, the truth {inside} its 2σ "
-            f"ellipse. Over the whole run it is {shown(float(np.mean(run.error)), '.2f')} m off on average, mean "
-            f"NEES {mean_nees:.3g}: {verdict(mean_nees)} (honest: {HONEST_NEES[0]:g} to {HONEST_NEES[1]:g})."
+            f"{at}: {heard}; {name} is {shown(float(run.error[k]), '.2f')} m off, the truth {inside} its 3σ "
+            f"ellipse. Over the whole run it is {shown(float(np.mean(run.error)), '.2f')} m off on average, "
+            f"{nees_said}: {verdict(mean_nees)} (honest: a mean of {HONEST_NEES[0]:g} to {HONEST_NEES[1]:g})."
         )
         smooth = self.smooth
         if self.smoothed and smooth is None and FILTERS[self.filter][0] != "ekf":
@@ -332,12 +369,16 @@ def _controls(model: RealRunModel) -> dict:
 CAPTION = (
     "<b>The real run.</b> Plaza2: 410 s of a real robot's wheel odometry and radio ranges to four beacons (purple "
     "squares). Grey: the true path (dotted) and robot. Orange: each range as an arc of its circle about its beacon, "
-    "in the second it arrives (dotted: refused by the gate). Teal: the filter's trail, robot and 2σ ellipse; pale "
-    "band: the smoother's path. Strip: the position NEES of every pose, the honest band shaded. <i>filter's R</i> / "
-    "<i>Q</i>: its odometry and range noise, times chapter 12's tuning. <i>scale</i>: the EKF or UKF estimates the "
-    "radio's scale; <i>gate</i>: it refuses ranges over 3σ off (<i>EKF + scale and gate</i> does both; the PF "
-    "assumes the scale 1.07, without a gate). <i>start</i>: told, or a guess 57 m off with an ellipse as wide as "
-    "the plaza (the PF: its cloud spread over it). <i>smoothed</i>: the EKF's RTS path."
+    "in the second it arrives (dotted: refused by the gate). Teal: the filter's trail, robot and 3σ ellipse (the "
+    "truth inside it: a position NEES of at most 9); pale band: the smoother's path. Strip: the position NEES of "
+    f"every pose; shaded, where an honest filter's lies at 95 % of its poses ({NEES_BAND[0]:.2f} to "
+    f"{NEES_BAND[1]:.1f}, chi-square with 2 degrees of freedom), dotted its average, 2. The verdict under the "
+    f"picture reads the whole run's mean NEES: honest from {HONEST_NEES[0]:g} to {HONEST_NEES[1]:g}. "
+    "<i>filter's R</i> / <i>Q</i>: its odometry and range noise, times chapter 12's tuning. "
+    "<i>scale</i>: the EKF or UKF estimates the radio's scale; <i>gate</i>: it refuses ranges over 3σ off "
+    "(<i>EKF + scale and gate</i> does both; the PF assumes the scale 1.07, without a gate). <i>start</i>: told, "
+    "or a guess 57 m off with an ellipse as wide as the plaza (the PF: its cloud spread over it). "
+    "<i>smoothed</i>: the EKF's RTS path."
 )
 
 

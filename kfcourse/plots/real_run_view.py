@@ -3,10 +3,12 @@ r"""The real run (chapter 12): a filter over a Plaza log, on the plaza at the sc
 The map shows the four beacons (purple squares), the true path (grey, dotted, the whole run) and the
 true robot (grey), the ranges that arrived in the second shown as orange arcs of their circles about
 their beacons (dash-dot: used; dotted and thin: refused by the gate), and the filter's estimate (teal):
-its trail over the last :data:`TRAIL` seconds, the estimated robot and its 2-sigma position ellipse.  The smoother's
-path, when shown, is the whole run at once, a wide pale teal band.  Under the map a strip shows the
-position NEES of every pose on a log scale against its honest band (:data:`~kfcourse.sim.HONEST_NEES`),
-with a cursor at the time shown.
+its trail over the last :data:`TRAIL` seconds, the estimated robot and its 3-sigma position ellipse.  The smoother's
+path, when shown, is the whole run at once, a wide pale teal band.  The legend names only what is drawn: the
+refused ranges when the run refused some, the estimate once its run is ready, the smoother's path when shown.
+Under the map a strip shows the position NEES of every pose on a log scale, with a cursor at the time shown,
+against the band where an honest filter's NEES lies at 95 % of its poses (:data:`~kfcourse.sim.NEES_BAND`,
+chi-square with 2 degrees of freedom: 0.05 to 7.4) and its average, 2 (dotted).
 
 :func:`real_run_view` draws the whole picture for a demo's model, :func:`update_real_run_view` shows the
 model's run and time on it again.  The model is anything with
@@ -32,14 +34,14 @@ from matplotlib.lines import Line2D
 from matplotlib.patches import Ellipse, Polygon
 from matplotlib.text import Text
 
-from ..sim.scores import HONEST_NEES
+from ..sim.tuning import NEES_BAND
 from . import palette
 from .artists import covariance_ellipse, landmarks, robot, update_covariance_ellipse, update_robot
 from .style import new_figure
 
 __all__ = ["RealRunView", "range_arcs", "real_run_view", "update_real_run_view"]
 
-NSIG = 2.0  # the map's ellipse is 2-sigma
+NSIG = 3.0  # the map's ellipse is 3-sigma: the truth inside it is a position NEES of at most 9 (kf.sim.RangeRun.inside)
 MAP_MARGIN = 6.0  # m of room around the beacons and the true path
 ROBOT_SIZE = 1.6  # m from the robot's centre to its nose: the plaza is 80 m across
 TRUTH_SIZE = 2.2  # m: the true robot is drawn larger, so it shows round an estimate on top of it
@@ -74,11 +76,12 @@ class RealRunView:
     trail: Line2D  #: the estimate's path over the last TRAIL seconds
     truth_robot: Polygon
     robot: Polygon
-    ring: Ellipse  #: 2-sigma
+    ring: Ellipse  #: NSIG-sigma
     note: Text  #: what the filter is doing while its run is not ready, else nothing
     nees: Line2D  #: the position NEES of every pose
     smooth_nees: Line2D  #: the smoother's (empty when not shown)
     cursor: Line2D  #: the time shown, on the strip
+    keys: dict  #: the legend's entries by label, in their order: only those drawn are shown (:func:`_legend`)
 
     @property
     def moving(self) -> list:
@@ -128,34 +131,33 @@ def real_run_view(model) -> RealRunView:
         ax.add_collection(arcs, autolim=False)
     (trail,) = ax.plot([], [], color=palette.ESTIMATE, lw=1.3, zorder=4)
     pose = log.truth[0]
-    truth_robot = robot(ax, pose, color=palette.TRUTH, size=TRUTH_SIZE, alpha=0.8, zorder=5)
+    edged = {"edgecolor": palette.TRUTH_TEXT, "lw": 1.0}  # the grey robot shows on its own grey path
+    truth_robot = robot(ax, pose, color=palette.TRUTH, size=TRUTH_SIZE, alpha=0.8, zorder=5, **edged)
     est = robot(ax, pose, color=palette.ESTIMATE, facecolor=to_rgba(palette.ESTIMATE, 0.3), size=ROBOT_SIZE, zorder=6)
     ring = covariance_ellipse(ax, pose, np.eye(2), nsig=NSIG, lw=1.8, zorder=7)
     note = ax.text(
         0.5, 0.5, "", transform=ax.transAxes, ha="center", va="center", fontsize=11, weight="bold", color=palette.INK
     )
-    handles = [
-        ax.scatter([], [], marker="s", color=palette.LANDMARK, s=40),
-        Line2D([], [], **truth_style),
-        Line2D([], [], color=palette.MEASUREMENT, ls=palette.MEASUREMENT_LINE, lw=1.6),
-        Line2D([], [], color=palette.MEASUREMENT, ls=":", lw=1.0),
-        Line2D([], [], color=palette.ESTIMATE, lw=1.3),
-        Ellipse((0, 0), 1, 1, fill=False, edgecolor=palette.ESTIMATE, lw=1.8),
-        Line2D([], [], color=palette.ESTIMATE, lw=5, alpha=0.3),
-    ]
-    labels = ["beacon", "truth", "range used", "range refused", "estimate (30 s)", "2σ", "smoothed"]
-    ax.legend(handles, labels, loc="lower left", bbox_to_anchor=(0.0, 1.0), ncols=4, fontsize=8, columnspacing=1.0)
+    keys = {
+        "beacon": ax.scatter([], [], marker="s", color=palette.LANDMARK, s=40),
+        "truth": Line2D([], [], **truth_style),
+        "range used": Line2D([], [], color=palette.MEASUREMENT, ls=palette.MEASUREMENT_LINE, lw=1.6),
+        "range refused": Line2D([], [], color=palette.MEASUREMENT, ls=":", lw=1.0),
+        f"estimate ({TRAIL:g} s)": Line2D([], [], color=palette.ESTIMATE, lw=1.3),
+        f"{NSIG:g}σ": Ellipse((0, 0), 1, 1, fill=False, edgecolor=palette.ESTIMATE, lw=1.8),
+        "smoothed": Line2D([], [], color=palette.ESTIMATE, lw=5, alpha=0.3),
+    }
     strip.set_yscale("log")
     strip.set_ylim(*NEES_LIMITS)
     strip.set_xlim(0.0, float(log.t_truth[-1]))
     strip.set_xlabel("t (s)", labelpad=1)
     strip.set_ylabel("NEES")
-    strip.axhspan(*HONEST_NEES, color=palette.ESTIMATE, alpha=0.12, lw=0)
+    strip.axhspan(*NEES_BAND, color=palette.ESTIMATE, alpha=0.12, lw=0)  # one pose's NEES, 95 % of the time
     strip.axhline(2.0, color=palette.ESTIMATE, lw=0.8, ls=":")  # an honest filter's average
     (smooth_nees,) = strip.plot([], [], color=palette.ESTIMATE, lw=2.5, alpha=0.3)
     (nees,) = strip.plot([], [], color=palette.ESTIMATE, lw=0.9)
     cursor = strip.axvline(0.0, color=palette.INK, lw=1.0)
-    view = RealRunView(fig, smooth, used, refused, trail, truth_robot, est, ring, note, nees, smooth_nees, cursor)
+    view = RealRunView(fig, smooth, used, refused, trail, truth_robot, est, ring, note, nees, smooth_nees, cursor, keys)
     update_real_run_view(view, model)
     return view
 
@@ -163,6 +165,27 @@ def real_run_view(model) -> RealRunView:
 def _clipped(values: np.ndarray) -> np.ndarray:
     """A NEES inside the strip's limits (an infinite one, a flat ellipse the truth left, at the top)."""
     return np.clip(np.nan_to_num(values, nan=NEES_LIMITS[1], posinf=NEES_LIMITS[1]), *NEES_LIMITS)
+
+
+def _legend(view: RealRunView, run, smooth) -> None:
+    """The map's legend with an entry for each thing drawn: the refused ranges only when the run refused some
+    (in any second: the legend stays as the time moves), the estimate and its ellipse once the run is ready, the
+    smoother's path when shown.  Made again only when its entries change (a change of run): a new legend is a
+    change to the picture's background, which is drawn again in full."""
+    ax = view.trail.axes
+    hidden = set()
+    if run is None:
+        hidden |= {label for label in view.keys if label.startswith("estimate") or label.endswith("σ")}
+    if run is None or not hasattr(run, "used") or run.used.all():
+        hidden.add("range refused")
+    if smooth is None:
+        hidden.add("smoothed")
+    labels = [label for label in view.keys if label not in hidden]
+    legend = ax.get_legend()
+    if legend is not None and [text.get_text() for text in legend.get_texts()] == labels:
+        return
+    handles = [view.keys[label] for label in labels]
+    ax.legend(handles, labels, loc="lower left", bbox_to_anchor=(0.0, 1.0), ncols=4, fontsize=8, columnspacing=1.0)
 
 
 def update_real_run_view(view: RealRunView, model) -> None:
@@ -191,3 +214,4 @@ def update_real_run_view(view: RealRunView, model) -> None:
     if smooth is not None:
         view.smooth.set_data(smooth.mu[:, 0], smooth.mu[:, 1])
         view.smooth_nees.set_data(smooth.t, _clipped(smooth.nees))
+    _legend(view, run, smooth)
