@@ -227,12 +227,17 @@ class RealRunModel:
         return self._ready(self.key(smooth=True)) if self.smoothed and FILTERS[self.filter][0] == "ekf" else None
 
     def busy(self) -> str:
-        """What the picture says while the run is not ready."""
-        if self.run is not None:
-            return ""
-        if self.key() in self._failed:
-            return f"the {self.kind_name()} failed on this setting"
-        return f"running the {self.kind_name()} over the log…"
+        """What the picture says while a run it needs is not ready: the filter's, named with the settings that make
+        it (so that each setting's picture says which it waits for), or the smoother's ("" when all are ready)."""
+        settings = self.changed()
+        name = self.kind_name() + (f" ({settings})" if settings else "")
+        if self.run is None:
+            failed = self.key() in self._failed
+            return f"the {name} failed on this setting" if failed else f"running the {name} over the log…"
+        if self.smoothed and FILTERS[self.filter][0] == "ekf" and self.smooth is None:
+            failed = self.key(smooth=True) in self._failed
+            return "the smoother failed on this run" if failed else "smoothing the EKF's run…"
+        return ""
 
     def kind_name(self) -> str:
         return {"ekf": "EKF", "ukf": "UKF", "pf": "PF"}[FILTERS[self.filter][0]]

@@ -143,7 +143,7 @@ def real_run_view(model) -> RealRunView:
         "truth": Line2D([], [], **truth_style),
         "range used": Line2D([], [], color=palette.MEASUREMENT, ls=palette.MEASUREMENT_LINE, lw=1.6),
         "range refused": Line2D([], [], color=palette.MEASUREMENT, ls=":", lw=1.0),
-        f"estimate ({TRAIL:g} s)": Line2D([], [], color=palette.ESTIMATE, lw=1.3),
+        f"estimate, last {TRAIL:g} s": Line2D([], [], color=palette.ESTIMATE, lw=1.3),
         f"{NSIG:g}σ": Ellipse((0, 0), 1, 1, fill=False, edgecolor=palette.ESTIMATE, lw=1.8),
         "smoothed": Line2D([], [], color=palette.ESTIMATE, lw=5, alpha=0.3),
     }

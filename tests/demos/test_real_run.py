@@ -276,7 +276,7 @@ def legend_labels(demo) -> list[str]:
 
 def test_the_legend_names_only_what_is_drawn_and_stays_as_time_moves(opened):
     demo = opened
-    drawn = ["beacon", "truth", "range used", "estimate (30 s)", "3σ"]
+    drawn = ["beacon", "truth", "range used", "estimate, last 30 s", "3σ"]
     assert legend_labels(demo) == drawn  # no range refused, no smoothed path
     demo.controls["smoothed"].value = True
     assert legend_labels(demo) == [*drawn, "smoothed"]
@@ -289,7 +289,7 @@ def test_the_legend_names_only_what_is_drawn_and_stays_as_time_moves(opened):
         "truth",
         "range used",
         "range refused",
-        "estimate (30 s)",
+        "estimate, last 30 s",
         "3σ",
         "smoothed",
     ]
@@ -322,7 +322,7 @@ def test_on_an_event_loop_a_new_setting_answers_at_once_and_is_drawn_when_made()
     run, busy, drawn = seen["at once"]
     assert run is None and busy == "running the UKF over the log…" and drawn == [("webp", False)]
     assert seen["legend"] == ["beacon", "truth", "range used"]  # no estimate drawn while it runs
-    assert legend_labels(demo) == ["beacon", "truth", "range used", "estimate (30 s)", "3σ"]
+    assert legend_labels(demo) == ["beacon", "truth", "range used", "estimate, last 30 s", "3σ"]
     assert seen["drawn"][-1] == ("jpeg", True)  # the run drawn crisp once made
     assert "UKF" in seen["said"] and "m off" in seen["said"]
     np.testing.assert_allclose(demo.model.run.mu, engine(filter="ukf").mu, rtol=0, atol=1e-9)
@@ -344,7 +344,7 @@ def test_a_run_that_fails_in_the_worker_is_said_and_not_tried_again(monkeypatch)
         return demo, tries
 
     demo, tries = asyncio.run(scenario())
-    assert len(tries) == 1 and demo.model.busy() == "the EKF failed on this setting"
+    assert len(tries) == 1 and demo.model.busy() == "the EKF (gated) failed on this setting"  # named by its setting
 
 
 def test_a_run_that_fails_without_an_event_loop_is_said_not_raised(opened, monkeypatch):
