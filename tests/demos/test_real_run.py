@@ -353,7 +353,7 @@ def test_a_run_that_fails_without_an_event_loop_is_said_not_raised(opened, monke
 
     monkeypatch.setattr(RealRunModel, "_make", broken)
     opened.controls["trust_motion"].value = 10**1.5  # not kept yet: made at once, and it fails
-    assert opened.model.busy() == "the EKF failed on this setting"
+    assert opened.model.busy() == "the EKF (R ×32) failed on this setting"  # named by its setting
     assert "failed on this setting" in said(opened) and not opened.renderer.dynamic[3].get_visible()
     opened.model._failed.clear()  # the shared demo may make it for another test
 
