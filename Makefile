@@ -93,6 +93,7 @@ bench: $(STAMP)
 	$(BIN)/python benchmarks/bench_pictures.py
 	$(BIN)/python benchmarks/bench_batch.py
 	$(BIN)/python benchmarks/bench_check.py
+	$(BIN)/python benchmarks/bench_real_run.py
 	$(BIN)/python benchmarks/bench_chapters.py
 	$(BIN)/python -m benchmarks.bench_link
 	$(BIN)/python -m benchmarks.bench_browser

@@ -22,7 +22,7 @@ from tools.recording import HOLD_MS, description_at, frame_pictures, frames_to_r
 DEMOS = kf.demos.__all__
 # The demos with a run to play, named here so that collecting the tests builds no demo;
 # test_the_demos_with_a_run_are_listed checks the list against every demo.
-FRAME_DEMOS = ["landmark_loop", "particle_cloud", "raw_vs_filtered", "tracker"]
+FRAME_DEMOS = ["landmark_loop", "particle_cloud", "raw_vs_filtered", "real_run", "tracker"]
 
 
 def picture(data: bytes) -> Image.Image:

@@ -10,6 +10,7 @@ from .nees import nees_panel
 from .particle_cloud import particle_cloud
 from .particle_hallway import particle_hallway
 from .raw_vs_filtered import raw_vs_filtered
+from .real_run import real_run
 from .sigma_points import sigma_points
 from .step_through import step_through
 from .tracker import tracker
@@ -25,6 +26,7 @@ __all__ = [
     "particle_cloud",
     "particle_hallway",
     "raw_vs_filtered",
+    "real_run",
     "sigma_points",
     "step_through",
     "tracker",

@@ -28,6 +28,7 @@ from .localization_figures import gate_outline, reading_points, update_ellipse_c
 from .loop import loop_chart, position_errors
 from .matrix import predict_update_chart
 from .particles import cloud_chart
+from .plaza_charts import nees_chart, plaza_chart, ranges_chart
 from .runs import kf_run_chart
 from .style import FigureRenderer, new_figure
 from .ukf_figures import filter_comparison_chart, transform_moments_chart
@@ -51,11 +52,14 @@ __all__ = [
     "kf_run_chart",
     "landmarks",
     "loop_chart",
+    "nees_chart",
     "new_figure",
     "nonlinear_samples_chart",
     "palette",
+    "plaza_chart",
     "position_errors",
     "predict_update_chart",
+    "ranges_chart",
     "reading_points",
     "robot",
     "samples_chart",

@@ -36,6 +36,9 @@ def figures():
     ekf, ukf = kf.sim.landmark_loop(0, filter="ekf"), kf.sim.landmark_loop(0, filter="ukf")
     Sig_bar, Sig = np.array([[2.0, 0.8], [0.8, 1.0]]), np.array([[0.4, 0.1], [0.1, 0.7]])
     y = np.random.default_rng(0).normal(2.0, 2.0, 5000) ** 2
+    plaza2 = kf.data.load_plaza("Plaza2")
+    plaza_ekf = kf.sim.range_localize(plaza2, scale=1.07, steps=300)
+    plaza_runs = (plaza_ekf, kf.sim.smoothed(plaza_ekf), kf.sim.range_localize(plaza2, steps=300, filter="ukf"))
     return {
         "raw vs filtered": raw_vs_filtered_view(50).fig,
         "step through": step_through_view().fig,
@@ -52,6 +55,9 @@ def figures():
             [1, 2, 0], np.diag([0.5, 0.3, 0.1]), [1.3, 2.2, 0], np.diag([0.2, 0.2, 0.1]), [4.0, 6.0]
         ),
         "loop": kf.plots.loop_chart(ekf, k=55),
+        "plaza": kf.plots.plaza_chart(plaza2, *plaza_runs),
+        "ranges": kf.plots.ranges_chart(plaza2),
+        "plaza nees": kf.plots.nees_chart(*plaza_runs),
     }.items()
 
 
