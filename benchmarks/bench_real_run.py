@@ -6,9 +6,10 @@ Run by hand (not part of the test suite):
 
 Modelled on ``bench_demos.py``: the demo lives on an event loop, as in the kernel, and each change is timed
 from the moment the control's value is set until the image widget holds the new (light) picture: the
-*answer*.  A setting not run yet is made in the demo's worker thread, so a second figure is timed too: from
-the change until the run is drawn (the demo's ``refresh``), the *result*.  Moving in time while a run is being
-made is timed apart ("frame, busy"): the worker holds the GIL most of the time, and the answer shares it.
+*answer*.  A setting not run yet is made in the demo's worker process, so a second figure is timed too: from
+the change until the run is drawn (the demo's ``refresh``), the *result*; the first includes the process's
+start.  Moving in time while a run is being made is timed apart ("frame, busy"): the kernel shares the CPU
+with the worker.
 Each demo's model keeps its own runs (none is shared between demos): every setting below is new to it the first
 time.  A change of run that changes the legend (the estimate's entries go while it runs and come back with it) is
 a change to the picture's background, drawn again in full.

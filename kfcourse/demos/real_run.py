@@ -3,18 +3,25 @@
 A run over the whole log costs 1.3 s (EKF) to 2.5 s (PF, N = 1000): far more than a control may take.  So
 each demo's model keeps the last :data:`KEEP_RUNS` runs it made, by their settings (the trust sliders move in
 steps of ×√10, so a setting comes back); nothing is kept at module level, and two demos share no run.  A
-setting not run yet runs in the demo's worker thread: the change is answered at once with the truth and the
-ranges and the words "running the PF over the log…", and the run is drawn when it is done.  Moving in time
-only redraws.  The first run, and every run without an event loop (a script, a test), is made at once where it
-is first asked for: a script that changes three settings, then looks, makes one run.
+setting not run yet runs in the demo's worker process: the change is answered at once with the truth and the
+ranges and the words "running the PF over the log…", and the run is drawn when it is done.  A process, not a
+thread: a thread running the log would hold Python's lock, and the kernel's threads that send the picture, and
+the next control's change, would wait for it.  Moving in time only redraws.  The first run, and every run
+without an event loop (a script, a test), is made at once where it is first asked for: a script that changes
+three settings, then looks, makes one run.  Either way the run is the same call to :mod:`kfcourse.sim`
+(:meth:`RealRunModel.recipe`).
 """
 
 from __future__ import annotations
 
 import asyncio
+import multiprocessing
+import os
+import signal
+import weakref
 from collections import OrderedDict
 from collections.abc import Callable
-from concurrent.futures import ThreadPoolExecutor
+from concurrent.futures import Future, ProcessPoolExecutor
 
 import ipywidgets as widgets
 import numpy as np
@@ -59,6 +66,15 @@ def _running_loop():
         return None
 
 
+def _worker_started() -> None:
+    """In the worker process, once: deaf to the kernel's interrupt, which reaches the kernel's whole process group
+    (the run under way ends, and the worker stays for the next ones), and second to the kernel, the browser and
+    the server on the CPU (a run in the background must not slow the pictures that answer the student)."""
+    signal.signal(signal.SIGINT, signal.SIG_IGN)
+    if hasattr(os, "nice"):
+        os.nice(10)
+
+
 class RealRunModel:
     """Model: the settings of the filter over the log, its run, and the second shown.
 
@@ -89,7 +105,8 @@ class RealRunModel:
     -----
     The runs made are the model's own: an ordered dict by their settings (:meth:`key`), the one used last at
     its end, at most :data:`KEEP_RUNS` of them.  Only the event loop's thread reads or writes it (or the one
-    thread of a script); the worker thread is handed what it needs and hands its run back to the loop.
+    thread of a script).  The worker process is started when a run is first made in the background, is handed
+    the call that makes it (:meth:`recipe`), and hands the run back to the loop; it ends with the model.
     """
 
     def __init__(self, seed: int = 0):
@@ -102,7 +119,7 @@ class RealRunModel:
         self.frame = FIRST_FRAME
         self.on_ready: Callable[[], None] = lambda: None
         self._runs: OrderedDict = OrderedDict()  # the runs made, by their settings (key), latest used last
-        self._worker = ThreadPoolExecutor(max_workers=1, thread_name_prefix="real-run")
+        self._worker: ProcessPoolExecutor | None = None  # started when first needed (:meth:`_submit`)
         self._busy = None  # the settings being run in the background, if any
         self._failed: set = set()  # settings whose run raised: not tried again
         self._first = True  # the first run asked for is made at once, even on an event loop: the first picture
@@ -139,25 +156,27 @@ class RealRunModel:
             self._runs.popitem(last=False)
 
     def _make(self, key: tuple, base=None):
-        """The run with the settings ``key``: the course's filters over the whole log, or the smoother over
-        ``base``, the filter's run, for the smoother's settings."""
+        """The run with the settings ``key``, made here (:meth:`recipe`)."""
+        function, args, kwargs = self.recipe(key, base)
+        return function(*args, **kwargs)
+
+    def recipe(self, key: tuple, base=None) -> tuple[Callable, tuple, dict]:
+        """The call that makes the run with the settings ``key``, as (function, arguments, keywords): the course's
+        filters over the whole log, or the smoother over ``base``, the filter's run, for the smoother's settings."""
         _, kind, log_r, log_q, scale, gate, known, seed, smooth = key
         if smooth:
-            return smoothed(base)
+            return smoothed, (base,), {}
         r, q = np.sqrt(10.0**log_r), np.sqrt(10.0**log_q)  # R and Q scale as their standard deviations squared
         if kind == "pf":
             noise = {"speed_std": PF_NOISE["speed_std"] * r, "turn_std": PF_NOISE["turn_std"] * r}
             start = self.log.truth[0] if known else None
-            return range_particles(
-                self.log, n_particles=N_PARTICLES, seed=seed, **noise, range_std=PF_NOISE["range_std"] * q,
-                scale=SCALE, start=start,
-            )  # fmt: skip
+            kwargs = {"n_particles": N_PARTICLES, "seed": seed, **noise, "range_std": PF_NOISE["range_std"] * q}
+            return range_particles, (self.log,), {**kwargs, "scale": SCALE, "start": start}
         noise = {**NOISE, "speed_std": NOISE["speed_std"] * r, "turn_std": NOISE["turn_std"] * r}
         noise["range_std"] = NOISE["range_std"] * q
         start = {} if known else {"start": GUESS, "start_std": GUESS_STD}
-        return range_localize(
-            self.log, filter=kind, **noise, scale="online" if scale else 1.0, gate=GATE if gate else None, **start
-        )
+        kwargs = {"filter": kind, **noise, "scale": "online" if scale else 1.0, "gate": GATE if gate else None}
+        return range_localize, (self.log,), {**kwargs, **start}
 
     def _wanted(self) -> list[tuple]:
         """The runs the picture needs: the filter's, and the smoother's over it when shown."""
@@ -167,7 +186,7 @@ class RealRunModel:
         return keys
 
     def _rerun(self) -> None:
-        """On an event loop, have the worker thread make the runs the settings need that are not kept, one at a
+        """On an event loop, have the worker process make the runs the settings need that are not kept, one at a
         time; without one, nothing: each run is made at once when it is first asked for (:meth:`_ready`)."""
         loop = _running_loop()
         if loop is None or self._busy is not None:
@@ -176,8 +195,7 @@ class RealRunModel:
         if missing:
             self._busy = missing[0]
             base = self._kept((*missing[0][:-1], False))  # the smoother's input, read here: the runs are the loop's
-            # Once the change's picture is sent: the worker holds the GIL most of the time it runs
-            loop.call_soon(self._worker.submit, self._work, missing[0], base, loop)
+            loop.call_soon(self._submit, missing[0], base, loop)  # once the change's picture is on its way
 
     def _ready(self, key: tuple):
         """The run for ``key``: the one kept; else, without an event loop or for the demo's first picture, made at
@@ -202,9 +220,28 @@ class RealRunModel:
         except Exception:
             return None
 
-    def _work(self, key: tuple, base, loop) -> None:
-        """In the worker thread: make one run, then hand it to the event loop."""
-        loop.call_soon_threadsafe(self._made, key, self._attempt(key, base))
+    def _submit(self, key: tuple, base, loop) -> None:
+        """Hand the worker process the call that makes the run for ``key`` (starting it if need be); its run, or
+        None if the call raised or the process died, comes back to the event loop (:meth:`_made`)."""
+        if self._worker is None:
+            spawn = multiprocessing.get_context("spawn")  # a fresh interpreter: forking a kernel's threads is unsafe
+            self._worker = ProcessPoolExecutor(1, mp_context=spawn, initializer=_worker_started)
+            weakref.finalize(self, self._worker.shutdown, wait=False, cancel_futures=True)
+        function, args, kwargs = self.recipe(key, base)
+        try:
+            future = self._worker.submit(function, *args, **kwargs)
+        except Exception:  # the process is gone (killed, say) and cannot take work: said as the run failing
+            self._made(key, None)
+            return
+
+        def back(done: Future) -> None:  # in the executor's thread
+            run = None if done.cancelled() or done.exception() is not None else done.result()
+            try:
+                loop.call_soon_threadsafe(self._made, key, run)
+            except RuntimeError:  # the loop was closed meanwhile: nobody waits for the run
+                pass
+
+        future.add_done_callback(back)
 
     def _made(self, key: tuple, run) -> None:
         """On the event loop: keep the run (or note that it failed), start the next one the settings need, redraw
@@ -228,13 +265,16 @@ class RealRunModel:
 
     def busy(self) -> str:
         """What the picture says while a run it needs is not ready: the filter's, named with the settings that make
-        it (so that each setting's picture says which it waits for), or the smoother's ("" when all are ready)."""
+        it and whether the smoother follows (so that each setting's picture says which it waits for), or the
+        smoother's ("" when all are ready)."""
         settings = self.changed()
         name = self.kind_name() + (f" ({settings})" if settings else "")
+        smoother = self.smoothed and FILTERS[self.filter][0] == "ekf"
         if self.run is None:
-            failed = self.key() in self._failed
-            return f"the {name} failed on this setting" if failed else f"running the {name} over the log…"
-        if self.smoothed and FILTERS[self.filter][0] == "ekf" and self.smooth is None:
+            if self.key() in self._failed:
+                return f"the {name} failed on this setting"
+            return f"running the {name} over the log{', then the smoother' if smoother else ''}…"
+        if smoother and self.smooth is None:
             failed = self.key(smooth=True) in self._failed
             return "the smoother failed on this run" if failed else "smoothing the EKF's run…"
         return ""

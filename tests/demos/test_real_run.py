@@ -333,13 +333,17 @@ def test_a_run_that_fails_in_the_worker_is_said_and_not_tried_again(monkeypatch)
         demo = make()
         tries = []
 
-        def broken(self, key, base=None):
+        def broken(self, key, base=None):  # a call that raises in the worker process: a noise it refuses
             tries.append(key)
-            raise FloatingPointError("boom")
+            return kf.sim.range_localize, (self.log,), {"speed_std": -1.0}
 
-        monkeypatch.setattr(RealRunModel, "_make", broken)
+        monkeypatch.setattr(RealRunModel, "recipe", broken)
         demo.controls["gate"].value = True
-        for _ in range(40):
+        for _ in range(600):  # the worker process starts, then refuses the call
+            if demo.model.key() in demo.model._failed:
+                break
+            await asyncio.sleep(0.05)
+        for _ in range(10):  # and is not asked again
             await asyncio.sleep(0.02)
         return demo, tries
 
