@@ -32,8 +32,7 @@ from ..plots.real_run_view import real_run_view, update_real_run_view
 from ..plots.style import FigureRenderer
 from ..sim.range_particles import PF_NOISE, SCALE, range_particles
 from ..sim.range_run import range_localize, smoothed
-from ..sim.scores import HONEST_NEES, verdict
-from ..sim.tuning import NEES_BAND
+from ..sim.scores import HONEST_NEES, NEES_BAND, verdict
 from ._base import Demo, shown, slider
 
 LOG = "Plaza2"  # 410 s, 1.35 km, 4 090 odometry steps and 1 816 ranges

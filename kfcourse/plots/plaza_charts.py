@@ -21,7 +21,7 @@ from __future__ import annotations
 
 import numpy as np
 
-from ..sim.tuning import NEES_BAND
+from ..sim.scores import NEES_BAND
 from . import palette
 from .artists import landmarks
 from .style import new_figure

@@ -34,7 +34,7 @@ from matplotlib.lines import Line2D
 from matplotlib.patches import Ellipse, Polygon
 from matplotlib.text import Text
 
-from ..sim.tuning import NEES_BAND
+from ..sim.scores import NEES_BAND
 from . import palette
 from .artists import covariance_ellipse, landmarks, robot, update_covariance_ellipse, update_robot
 from .style import new_figure

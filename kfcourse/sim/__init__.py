@@ -29,7 +29,7 @@ from .range_particles import RangeParticleRun, range_particles
 from .range_run import DATA_SHEET, RangeRun, range_localize, smoothed
 from .robot import DEFAULT_LANDMARKS, RobotRun, loop_controls, readings, simulate_robot
 from .scan import AssociationScan, GatedUpdate, association_scan, gated_update
-from .scores import nees, nees_band, verdict
+from .scores import NEES_BAND, nees, nees_band, verdict
 from .student_step import localize_with_step
 from .target import (
     TargetEstimates,
@@ -41,7 +41,7 @@ from .target import (
     simulate_target,
     simulate_tracks,
 )
-from .tuning import NEES_BAND, TuningScore, tuning_score
+from .tuning import TuningScore, tuning_score
 from .walk import simulate_walk
 
 __all__ = [

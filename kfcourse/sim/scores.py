@@ -1,7 +1,8 @@
 """Scores of a filter's honesty: the NEES and the bands it should lie in (chapters 6, 10 and 11).
 
 Every NEES of the course is :func:`nees`; :func:`nees_band` gives the chi-square band of an
-average of independent NEES draws, and :data:`HONEST_NEES` the band of one lap's mean position NEES.
+average of independent NEES draws, :data:`HONEST_NEES` the band of one lap's mean position NEES, and
+:data:`NEES_BAND` the band of one position NEES (chapter 12).
 """
 
 from __future__ import annotations
@@ -14,6 +15,9 @@ import numpy as np
 from .. import _validate as v
 
 HONEST_NEES = (1.0, 4.0)  # the band of the mean position NEES (2 for an honest filter) read as honest
+# The two-sided 95 % band of one position NEES, chi-square with 2 degrees of freedom: -2 ln(1 - p) at
+# p = 0.025 and 0.975.  An honest filter's NEES lies inside it at 95 % of its steps.
+NEES_BAND = (-2.0 * math.log(1.0 - 0.025), -2.0 * math.log(1.0 - 0.975))  # (0.051, 7.38)
 FADE_TIME = 1.0  # s: how long a tracking filter's error takes to fade; the honesty test's draws are this far apart
 
 

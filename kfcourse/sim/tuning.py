@@ -8,15 +8,11 @@ NEES lies where an honest filter's would, and whether it is honest, timid or ove
 
 from __future__ import annotations
 
-import math
 from dataclasses import dataclass
 
 from .range_run import DATA_SHEET, range_localize
 from .records import Record
-
-# The two-sided 95 % band of one position NEES, chi-square with 2 degrees of freedom: -2 ln(1 - p) at
-# p = 0.025 and 0.975.  An honest filter's NEES lies inside it at 95 % of its steps.
-NEES_BAND = (-2.0 * math.log(1.0 - 0.025), -2.0 * math.log(1.0 - 0.975))  # (0.051, 7.38)
+from .scores import NEES_BAND
 
 
 @dataclass(frozen=True)

@@ -13,8 +13,7 @@ import pytest
 
 from kfcourse.demos.real_run import RealRunModel
 from kfcourse.plots.real_run_view import MAP_MARGIN
-from kfcourse.sim.scores import verdict
-from kfcourse.sim.tuning import NEES_BAND
+from kfcourse.sim.scores import NEES_BAND, verdict
 
 pytestmark = pytest.mark.fact  # states facts of runs over a real log, the PF's seeded: repeated under other rounding
 

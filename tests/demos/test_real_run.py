@@ -26,8 +26,7 @@ from kfcourse.demos.real_run import (
     RealRunModel,
 )
 from kfcourse.plots.real_run_view import range_arcs
-from kfcourse.sim.scores import HONEST_NEES
-from kfcourse.sim.tuning import NEES_BAND
+from kfcourse.sim.scores import HONEST_NEES, NEES_BAND
 from tests.demos.describing import at_the_ends, move, said
 
 # Only the tests marked `fact` state facts of seeded runs (the PF's): the EKF and the UKF draw nothing.
