@@ -51,7 +51,8 @@ restore:
 #  2. the facts of seeded runs again (tests marked `fact` and every notebook, the `slow` ones
 #     apart: tests/facts.py), as another CPU's rounding, perturbed (tests/repeats.py): once for
 #     each numpy SIMD level below this CPU's (once as this CPU if there is none), with every noise
-#     draw scaled by 1 + 1e-12 (1 - 1e-12 in a second repeat: tests/rounding.py). What they state must hold;
+#     draw scaled by 1 + 1e-12 (1 - 1e-12 in a second repeat: tests/rounding.py). What they state must hold.
+#     NPY_DISABLE_CPU_FEATURES="X86_V4 AVX512_ICL" make test: an AVX-512 CPU runs every pass as an AVX2 one;
 #  3. the browser suite.
 # Each pass writes its timings to $(TIMES); the last line prints the 15 slowest tests of all.
 PYTEST   := $(BIN)/pytest -n 2 --dist loadfile --nbval-lax --nbval-current-env --nbval-cell-timeout=120

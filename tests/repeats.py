@@ -18,9 +18,15 @@ Each repeat also scales every normal draw by ``1 + size``, with ``size`` = +1e-1
 the next repeat: a run whose last digits a chapter states moves under either change, so one pass
 that makes both tests both, in the time of one.  Disabling a level this CPU lacks would only
 repeat the main pass, so the levels come from ``numpy._core._multiarray_umath.__cpu_features__``.
+
+A faster CPU can stand in for a slower one: ``NPY_DISABLE_CPU_FEATURES="X86_V4 AVX512_ICL" make test`` runs
+every pass on an AVX-512 CPU as an AVX2 one would (numpy reads the variable in pass 1, the browser suite and
+every kernel), and each repeat keeps those features off beside its own.
 """
 
 from __future__ import annotations
+
+import os
 
 # numpy 2's x86 dispatch levels, lowest first; a level's extra features come with it.
 LEVELS = (
@@ -41,17 +47,22 @@ def simd_levels(features: dict[str, bool]) -> list[tuple[str, str]]:
     return out[::-1]
 
 
-def repeats(features: dict[str, bool]) -> list[tuple[str, str, float]]:
+def repeats(features: dict[str, bool], disabled: str = "") -> list[tuple[str, str, float]]:
     """The repeats: (name, features to disable, perturbation) for each level below this CPU's, signs alternating;
-    one perturbed repeat as this CPU where there is no level below."""
+    one perturbed repeat as this CPU where there is no level below.  ``features`` are numpy's as this run sees
+    them, with ``disabled`` (the environment's ``NPY_DISABLE_CPU_FEATURES``) off: they stay off in every repeat."""
     levels = simd_levels(features) or [("this-cpu", "")]
-    return [(name, off, SIZE if i % 2 == 0 else -SIZE) for i, (name, off) in enumerate(levels)]
+    kept = disabled.split()
+    return [
+        (name, " ".join(dict.fromkeys(kept + off.split())), SIZE if i % 2 == 0 else -SIZE)
+        for i, (name, off) in enumerate(levels)
+    ]
 
 
 def main() -> None:
     from numpy._core._multiarray_umath import __cpu_features__
 
-    for name, off, size in repeats(__cpu_features__):
+    for name, off, size in repeats(__cpu_features__, os.environ.get("NPY_DISABLE_CPU_FEATURES", "")):
         print(f"{name};{off};{size!r}")
 
 

@@ -6,8 +6,15 @@ Each test here plants a small test file under ``tests/`` and runs pytest on it i
 
 from __future__ import annotations
 
+import os
+import subprocess
+import sys
+from pathlib import Path
+
 from tests.facts import planted
 from tests.repeats import SIZE, repeats
+
+ROOT = Path(__file__).resolve().parents[1]
 
 PLANTED = """
 import pytest
@@ -80,3 +87,19 @@ def test_each_repeat_is_a_level_below_this_cpus_perturbed_with_signs_alternating
     assert repeats({"X86_V2": True, "X86_V3": True, "X86_V4": False}) == [("x86-64-v2", "X86_V3", SIZE)]
     assert repeats({"X86_V2": True, "X86_V3": False}) == [("this-cpu", "", SIZE)]  # nothing lower: perturbed only
     assert repeats({"ASIMD": True}) == [("this-cpu", "", SIZE)]  # another architecture
+
+
+def test_a_cpu_standing_in_for_a_slower_one_keeps_its_levels_off_in_every_repeat():
+    as_avx2 = {"X86_V2": True, "X86_V3": True, "X86_V4": False, "AVX512_ICL": False}  # numpy, AVX-512 turned off
+    assert repeats(as_avx2, disabled="X86_V4 AVX512_ICL") == [("x86-64-v2", "X86_V4 AVX512_ICL X86_V3", SIZE)]
+    baseline = {"X86_V2": True, "X86_V3": False, "X86_V4": False}
+    assert repeats(baseline, disabled=" X86_V3  X86_V4 ") == [("this-cpu", "X86_V3 X86_V4", SIZE)]
+
+
+def test_the_repeats_read_what_the_environment_turns_off():
+    env = {**os.environ, "NPY_DISABLE_CPU_FEATURES": "X86_V4 AVX512_ICL"}
+    lines = subprocess.run(
+        [sys.executable, "-m", "tests.repeats"], env=env, capture_output=True, text=True, check=True, cwd=ROOT
+    ).stdout.splitlines()
+    assert lines and all(line.split(";")[1].split()[:2] == ["X86_V4", "AVX512_ICL"] for line in lines)
+    assert not any(name == "X86_V3" for name, *_ in (line.split(";") for line in lines))  # no repeat as AVX2 itself
