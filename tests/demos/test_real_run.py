@@ -327,6 +327,28 @@ def test_on_an_event_loop_a_new_setting_answers_at_once_and_is_drawn_when_made()
     np.testing.assert_allclose(demo.model.run.mu, engine(filter="ukf").mu, rtol=0, atol=1e-9)
 
 
+def test_a_waiting_picture_says_whether_the_smoother_follows():
+    seen = {}
+
+    async def scenario():
+        demo = make()
+        demo.controls["smoothed"].value = True
+        while demo.model.smooth is None:  # the smoother over the opening run
+            await asyncio.sleep(0.05)
+        demo.controls["trust_motion"].value = 10.0
+        seen["with"] = demo.model.busy()
+        demo.controls["smoothed"].value = False  # the same setting's run, no smoother after it: another picture
+        seen["without"] = demo.model.busy()
+        while demo.model.run is None:
+            await asyncio.sleep(0.05)
+
+    asyncio.run(scenario())
+    assert seen == {
+        "with": "running the EKF (R ×10) over the log, then the smoother…",
+        "without": "running the EKF (R ×10) over the log…",
+    }
+
+
 def test_a_run_that_fails_in_the_worker_is_said_and_not_tried_again(monkeypatch):
     async def scenario():
         demo = make()
