@@ -9,12 +9,9 @@ from __future__ import annotations
 import os
 import subprocess
 import sys
-from pathlib import Path
 
-from tests.facts import planted
+from tests.facts import ROOT, planted
 from tests.repeats import SIZE, repeats
-
-ROOT = Path(__file__).resolve().parents[1]
 
 PLANTED = """
 import pytest

@@ -179,10 +179,7 @@ class RealRunModel:
 
     def _wanted(self) -> list[tuple]:
         """The runs the picture needs: the filter's, and the smoother's over it when shown."""
-        keys = [self.key()]
-        if self.smoothed and FILTERS[self.filter][0] == "ekf":
-            keys.append(self.key(smooth=True))
-        return keys
+        return [self.key(), self.key(smooth=True)] if self.smoother_shown else [self.key()]
 
     def _rerun(self) -> None:
         """On an event loop, have the worker process make the runs the settings need that are not kept, one at a
@@ -259,8 +256,13 @@ class RealRunModel:
         return self._ready(self.key())
 
     @property
+    def smoother_shown(self) -> bool:
+        """Whether the picture shows the smoother's path: asked for, and the filter an EKF (RTS is the EKF's)."""
+        return self.smoothed and FILTERS[self.filter][0] == "ekf"
+
+    @property
     def smooth(self):
-        return self._ready(self.key(smooth=True)) if self.smoothed and FILTERS[self.filter][0] == "ekf" else None
+        return self._ready(self.key(smooth=True)) if self.smoother_shown else None
 
     def busy(self) -> str:
         """What the picture says while a run it needs is not ready: the filter's, named with the settings that make
@@ -268,12 +270,11 @@ class RealRunModel:
         smoother's ("" when all are ready)."""
         settings = self.changed()
         name = self.kind_name() + (f" ({settings})" if settings else "")
-        smoother = self.smoothed and FILTERS[self.filter][0] == "ekf"
         if self.run is None:
             if self.key() in self._failed:
                 return f"the {name} failed on this setting"
-            return f"running the {name} over the log{', then the smoother' if smoother else ''}…"
-        if smoother and self.smooth is None:
+            return f"running the {name} over the log{', then the smoother' if self.smoother_shown else ''}…"
+        if self.smoother_shown and self.smooth is None:
             failed = self.key(smooth=True) in self._failed
             return "the smoother failed on this run" if failed else "smoothing the EKF's run…"
         return ""
@@ -358,7 +359,7 @@ class RealRunModel:
             f"{nees_said}: {verdict(mean_nees)} (honest: a mean of {HONEST_NEES[0]:g} to {HONEST_NEES[1]:g})."
         )
         smooth = self.smooth
-        if self.smoothed and smooth is None and FILTERS[self.filter][0] != "ekf":
+        if self.smoothed and not self.smoother_shown:
             said = said[:-1] + "; the smoother here is the EKF's (RTS): choose an EKF to see it."
         elif smooth is not None:
             said = said[:-1] + f"; smoothed, {shown(float(np.mean(smooth.error)), '.2f')} m off on average."
