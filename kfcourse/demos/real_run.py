@@ -22,6 +22,7 @@ import weakref
 from collections import OrderedDict
 from collections.abc import Callable
 from concurrent.futures import Future, ProcessPoolExecutor
+from concurrent.futures.process import BrokenProcessPool
 
 import ipywidgets as widgets
 import numpy as np
@@ -218,26 +219,41 @@ class RealRunModel:
 
     def _submit(self, key: tuple, base, loop) -> None:
         """Hand the worker process the call that makes the run for ``key`` (starting it if need be); its run, or
-        None if the call raised or the process died, comes back to the event loop (:meth:`_made`)."""
+        None if the call raised or the process died, comes back to the event loop (:meth:`_made`).  A process that
+        died (killed, say) is replaced: before a run, the run goes to a new one; under a run, that run is said
+        to have failed, and the next one starts a new process."""
         if self._worker is None:
             spawn = multiprocessing.get_context("spawn")  # a fresh interpreter: forking a kernel's threads is unsafe
             self._worker = ProcessPoolExecutor(1, mp_context=spawn, initializer=_worker_started)
             weakref.finalize(self, self._worker.shutdown, wait=False, cancel_futures=True)
+        worker = self._worker
         function, args, kwargs = self.recipe(key, base)
         try:
-            future = self._worker.submit(function, *args, **kwargs)
-        except Exception:  # the process is gone (killed, say) and cannot take work: said as the run failing
+            future = worker.submit(function, *args, **kwargs)
+        except BrokenProcessPool:  # it died while idle
+            self._worker = None
+            self._submit(key, base, loop)
+            return
+        except Exception:  # it cannot take work (the kernel is shutting down): said as the run failing
             self._made(key, None)
             return
 
         def back(done: Future) -> None:  # in the executor's thread
-            run = None if done.cancelled() or done.exception() is not None else done.result()
+            error = None if done.cancelled() else done.exception()
+            run = None if done.cancelled() or error is not None else done.result()
             try:
+                if isinstance(error, BrokenProcessPool):  # it died under this run
+                    loop.call_soon_threadsafe(self._retire, worker)
                 loop.call_soon_threadsafe(self._made, key, run)
             except RuntimeError:  # the loop was closed meanwhile: nobody waits for the run
                 pass
 
         future.add_done_callback(back)
+
+    def _retire(self, worker: ProcessPoolExecutor) -> None:
+        """On the event loop: forget a worker whose process died; the next run starts a new one."""
+        if self._worker is worker:
+            self._worker = None
 
     def _made(self, key: tuple, run) -> None:
         """On the event loop: keep the run (or note that it failed), start the next one the settings need, redraw

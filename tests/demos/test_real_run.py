@@ -7,6 +7,8 @@ from __future__ import annotations
 
 import asyncio
 import dataclasses
+import os
+import signal
 import sys
 
 import numpy as np
@@ -370,6 +372,46 @@ def test_a_run_that_fails_in_the_worker_is_said_and_not_tried_again(monkeypatch)
 
     demo, tries = asyncio.run(scenario())
     assert len(tries) == 1 and demo.model.busy() == "the EKF (gated) failed on this setting"  # named by its setting
+
+
+def test_a_worker_process_that_dies_is_replaced():
+    async def until(condition):
+        for _ in range(600):
+            if condition():
+                return
+            await asyncio.sleep(0.05)
+
+    def kill(worker):
+        for pid in list(worker._processes):
+            os.kill(pid, signal.SIGKILL)
+
+    async def scenario():
+        demo = make()
+        model = demo.model
+        demo.controls["gate"].value = True  # the worker's first run
+        await until(lambda: model.run is not None)
+        idle = model._worker
+        kill(idle)  # dies while idle: the next run goes to a new process
+        await until(lambda: idle._broken)
+        demo.controls["scale"].value = True
+        await until(lambda: model.run is not None or model.key() in model._failed)
+        seen = {"after an idle death": (model.run is not None, model._worker is not idle)}
+        demo.controls["trust_sensor"].value = 10.0
+        await asyncio.sleep(0.3)  # handed to the worker, which runs it for a second or more
+        busy = model._worker
+        kill(busy)  # dies under this run: it is said to have failed, and the next run starts a new process
+        await until(lambda: model.key() in model._failed)
+        seen["under a run"] = model.busy()
+        demo.controls["trust_sensor"].value = 10**-0.5
+        await until(lambda: model.run is not None or model.key() in model._failed)
+        seen["after it"] = (model.run is not None, model._worker not in (None, busy))
+        return seen
+
+    assert asyncio.run(scenario()) == {
+        "after an idle death": (True, True),
+        "under a run": "the EKF (Q ×10, scale estimated, gated) failed on this setting",
+        "after it": (True, True),
+    }
 
 
 def test_a_run_that_fails_without_an_event_loop_is_said_not_raised(opened, monkeypatch):
