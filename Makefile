@@ -18,6 +18,11 @@ CH       ?=
 STAMP    := $(VENV)/.kfcourse-installed
 AXE      := node_modules/axe-core/axe.min.js
 
+# Python keeps the modules it compiles (__pycache__/, git-ignored) even where the environment says not to
+# (PYTHONDONTWRITEBYTECODE): otherwise every test worker, kernel and pass compiles the course again, and pytest
+# rewrites every test module's asserts again, about 7 s a worker a pass.
+unexport PYTHONDONTWRITEBYTECODE
+
 .PHONY: lab app restore badges test check lint bench notebooks site pins clean
 
 $(STAMP): binder/requirements.txt requirements-dev.txt pyproject.toml

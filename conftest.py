@@ -10,6 +10,11 @@ perturbation of 1e-12 states digits of this machine's rounding, not facts.
 
 The frozen runs the tests share are built once per process (``tests/frozen_runs.py``).
 
+In a repeat (``--perturb``) the demos and charts draw no pixels: ``FigureRenderer`` hands out a
+blank picture, since what a repeat checks is a run's numbers and the words and artists made of them,
+and drawing is most of a demo test's time.  A test that reads what is drawn (the picture changing,
+a label's extent, which artists redraw) is marked ``pixels``, and its pictures are drawn.
+
 Every notebook cell is marked ``fact``: a chapter states facts of its seeded runs.  In a run without
 ``--perturb``, a test that runs a seeded simulation without the ``fact`` marker fails
 (``tests/facts.py``): the repeats select by that marker.
@@ -58,6 +63,18 @@ def pytest_collection_modifyitems(config, items):
     for item in items:
         if item.path.suffix == ".ipynb":
             item.add_marker(pytest.mark.fact)
+
+
+@pytest.fixture(autouse=True)
+def _no_pixels_in_a_repeat(request, monkeypatch):
+    """In a repeat, a test not marked ``pixels`` gets blank pictures (see the module's text)."""
+    if request.config.getoption("--perturb") is None or request.node.get_closest_marker("pixels"):
+        return
+    from PIL import Image
+
+    from kfcourse.plots.style import FigureRenderer
+
+    monkeypatch.setattr(FigureRenderer, "_render", lambda self, mode: Image.new(mode, (2, 2)))
 
 
 @pytest.hookimpl(wrapper=True)

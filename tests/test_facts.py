@@ -49,6 +49,28 @@ def test_marked_without_a_run():
 
 def test_unmarked_without_a_run():
     assert sum([1, 2]) == 3
+
+
+def picture_width():
+    from matplotlib.backends.backend_agg import FigureCanvasAgg
+    from matplotlib.figure import Figure
+
+    from kfcourse.plots.style import FigureRenderer
+
+    fig = Figure(figsize=(2, 1), dpi=50)
+    FigureCanvasAgg(fig)
+    return FigureRenderer(fig).image().width
+
+
+@pytest.mark.fact
+def test_marked_picture_is_drawn():
+    assert picture_width() == 100
+
+
+@pytest.mark.fact
+@pytest.mark.pixels
+def test_marked_picture_read_by_its_pixels_is_drawn():
+    assert picture_width() == 100
 """
 
 
@@ -61,18 +83,24 @@ def test_the_guard_fails_an_unmarked_test_that_runs_a_seeded_simulation():
         "test_unmarked_later_user_of_a_seeded_fixture": "FAILED",
         "test_marked_without_a_run": "PASSED",
         "test_unmarked_without_a_run": "PASSED",
+        "test_marked_picture_is_drawn": "PASSED",
+        "test_marked_picture_read_by_its_pixels_is_drawn": "PASSED",
     }, output[-3000:]
     assert "is not marked 'fact'" in output, output[-3000:]
 
 
-def test_the_repeats_select_only_the_marked_tests():
+def test_the_repeats_select_only_the_marked_tests_and_draw_only_for_those_reading_pixels():
     outcome, output = planted(PLANTED, "-m", "fact", "--perturb=1e-12")
     assert set(outcome) == {
         "test_marked_run",
         "test_marked_first_user_of_a_seeded_fixture",
         "test_marked_without_a_run",
+        "test_marked_picture_is_drawn",
+        "test_marked_picture_read_by_its_pixels_is_drawn",
     }
     assert outcome["test_marked_run"] == "PASSED", output[-3000:]
+    assert outcome["test_marked_picture_is_drawn"] == "FAILED", output[-3000:]  # a blank picture in a repeat
+    assert outcome["test_marked_picture_read_by_its_pixels_is_drawn"] == "PASSED", output[-3000:]
 
 
 def test_each_repeat_is_a_level_below_this_cpus_perturbed_with_signs_alternating():

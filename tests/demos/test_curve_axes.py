@@ -78,6 +78,7 @@ def test_densities_are_real_densities(name):
         assert heights.max() <= view.panels.ax_out.get_xlim()[1]
 
 
+@pytest.mark.pixels
 @pytest.mark.fact
 @pytest.mark.parametrize("name", DEMOS)
 def test_a_slider_step_that_changes_no_limit_does_not_redraw_in_full(name):

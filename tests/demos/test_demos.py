@@ -91,6 +91,7 @@ def test_first_frame_is_drawn_and_repeatable(name):
     assert_finite(a)
 
 
+@pytest.mark.pixels
 @pytest.mark.fact
 @pytest.mark.parametrize("name", DEMOS)
 def test_every_slider_at_min_max_and_middle(name):
@@ -126,6 +127,7 @@ def test_every_button_changes_the_picture_or_the_model(name):
         assert_finite(demo, f"{key} pressed")
 
 
+@pytest.mark.pixels
 @pytest.mark.fact
 def test_raw_vs_filtered_animation_and_noise():
     demo = make("raw_vs_filtered")

@@ -104,6 +104,7 @@ def test_sliders_rerun_the_lap_once_where_they_are_let_go():
         ("filter", "UKF", "filter"),
     ],
 )
+@pytest.mark.pixels
 def test_each_control_reruns_the_lap_with_its_setting(key, value, attr):
     demo = make()
     m = demo.model

@@ -28,6 +28,7 @@ def set_mistune(demo, which, factor):
     assert demo.model.which == which and demo.model.factor == pytest.approx(factor)
 
 
+@pytest.mark.pixels
 @pytest.mark.fact
 def test_controls_mistune_the_named_noise_and_keep_the_world():
     demo = make()
@@ -96,6 +97,7 @@ def test_factor_extremes_stay_finite_and_on_the_right_side(which):
         assert "nan" not in readout(demo).lower()
 
 
+@pytest.mark.pixels
 @pytest.mark.fact
 def test_new_run_draws_new_tracks_and_keeps_the_mistuning():
     demo = make()
@@ -110,6 +112,7 @@ def test_new_run_draws_new_tracks_and_keeps_the_mistuning():
     assert bytes(demo.image.value) != picture and "run 1:" in readout(demo)
 
 
+@pytest.mark.pixels
 @pytest.mark.fact
 def test_picture_and_controls_fit_a_laptop():
     demo = make()

@@ -64,6 +64,7 @@ def test_first_frame():
     assert f"{m.run.ess[FIRST_FRAME]:.0f}" in text
 
 
+@pytest.mark.pixels
 @pytest.mark.fact
 def test_every_setting_reruns_the_lap_with_it():
     demo = make()

@@ -52,6 +52,7 @@ def test_ch0_the_band_is_about_14_cm_either_side():
     assert np.all(np.round(100 * sd) == 14)
 
 
+@pytest.mark.pixels
 def test_ch0_run_replays_time_from_the_start():
     """Press Run (or drag the step slider): time flows from the first step."""
     demo = kf.demos.raw_vs_filtered(seed=0)
@@ -106,6 +107,7 @@ def test_ch0_sensor_noise_up_over_twenty_runs():
     assert 0 < sum(dead_wins) < len(dead_wins)  # sometimes the better of the two, sometimes the worse
 
 
+@pytest.mark.pixels
 def test_ch0_the_position_label_stays_in_the_picture_at_every_sensor_noise():
     """The layout is found for the first frame; wider tick labels at 3 m must not push "position (m)" out."""
     demo = kf.demos.raw_vs_filtered(seed=0)
@@ -138,6 +140,7 @@ def test_ch0_sensor_noise_down_filter_follows_the_sensor():
     assert rms(demo.model.run.mu - demo.model.run.z) > 0.2  # at the default it does not just copy them
 
 
+@pytest.mark.pixels
 def test_ch0_new_noise_draws_a_fresh_run_and_the_second_is_lucky_for_dead_reckoning():
     """After the previous prompt (sensor noise at 0.05 m), set it back to 0.4 m and press New noise:
     a fresh run; press it a second time and dead reckoning (11 cm RMS) beats the filter (12 cm)."""
@@ -241,6 +244,7 @@ def test_ch1_predict_without_update_shifts_and_blurs():
     assert "1 move since Reset" in demo.renderer.fig.axes[0].texts[0].get_text()
 
 
+@pytest.mark.pixels
 def test_ch1_belief_axis_label_is_never_clipped():
     """Seed 0, motion reliability 0.5, Predict five times: the belief axis labels two decimals and
     its label stays inside the picture at every frame."""
@@ -321,6 +325,7 @@ def test_ch1_walls_pile_the_belief_into_the_last_cell():
     assert loop.model.belief[-1] < 0.5
 
 
+@pytest.mark.pixels
 def test_ch1_controls_change_the_picture_and_reset_returns_to_the_first_frame():
     demo = kf.demos.hallway(seed=0)
     first = bytes(demo.image.value)

@@ -325,6 +325,7 @@ def test_ch04_cycle_1_again(trust_demo):
     assert "μ = 3.51" in trust_readout(demo)
 
 
+@pytest.mark.pixels
 @pytest.mark.parametrize("var_pred", [0.01, 0.1, 1.0, 10.0])
 @pytest.mark.parametrize("var_meas", [0.01, 0.3, 10.0])
 def test_ch04_the_density_label_is_never_cut_off(trust_demo, var_pred, var_meas):

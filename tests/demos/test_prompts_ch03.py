@@ -157,6 +157,7 @@ PROMPTS = (
 )
 
 
+@pytest.mark.pixels
 def test_try_this_1_to_6_in_order_on_one_demo():
     """The chapter's six prompts, one after the other on the same demo, each asserting what it promises."""
     d = demo()
@@ -204,6 +205,7 @@ def assert_density_label_not_clipped(d, what: str) -> None:
             assert box.x0 >= 0 and box.x1 <= fig.bbox.x1, f"after {what}: {text.get_text()!r} at {box}"
 
 
+@pytest.mark.pixels
 def test_the_density_label_is_never_cut_off():
     """Tall and flat curves change the y tick labels ("0.5", "1.75", "12.5", "0.0125"); the layout is
     found once, so none of them may push the "density" label off the picture."""

@@ -54,6 +54,7 @@ def slider_to(demo, key, value):
 
 
 # --------------------------------------------------------------------------- controls
+@pytest.mark.pixels
 @pytest.mark.fact
 def test_filter_sliders_retune_the_filter_not_the_world():
     demo = make()
@@ -87,6 +88,7 @@ def test_sensor_slider_changes_the_world_and_the_filter_is_told_the_truth():
     assert "filter's Q = 0.1 m², true 1 m²" in readout(demo)
 
 
+@pytest.mark.pixels
 @pytest.mark.fact
 def test_new_run_draws_new_noise_and_keeps_the_settings():
     demo = make()
@@ -169,6 +171,7 @@ def test_time_and_retuning_never_redraw_the_map():
     assert limits[0][0] < lo[0] and hi[0] < limits[0][1] and limits[1][0] < lo[1] and hi[1] < limits[1][1]
 
 
+@pytest.mark.pixels
 @pytest.mark.fact
 def test_first_frame_is_useful_and_seeded():
     a, b, c = make(0), make(0), make(1)
@@ -248,6 +251,7 @@ def rows_fit_the_output(demo) -> bool:
     return True
 
 
+@pytest.mark.pixels
 @pytest.mark.fact
 def test_picture_and_controls_fit_a_laptop_at_every_corner_of_the_sliders():
     demo = make()

@@ -17,6 +17,7 @@ def runs():
     return kf.sim.run_ekf(flipped=False, seed=0), kf.sim.run_ekf(flipped=True, seed=0)
 
 
+@pytest.mark.pixels
 def test_chart_draws_both_runs(runs):
     right, wrong = runs
     fig = kf.plots.jacobian_runs_chart(right, wrong, every=12)

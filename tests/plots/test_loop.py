@@ -107,6 +107,7 @@ def test_run_never_redraws_the_background():
         assert strip_state(demo) == (limits, draws)
 
 
+@pytest.mark.pixels
 @pytest.mark.fact
 def test_a_new_run_redraws_the_background_only_when_the_limits_change():
     """A change of setting reruns the lap: the strips take the new run's limits, drawn in full once,

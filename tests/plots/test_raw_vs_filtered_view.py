@@ -57,6 +57,7 @@ def test_every_reading_estimate_and_error_is_in_view(sensor_std):
     assert max(e.max() for e in model.errors()) <= view.ax_err.get_ylim()[1]
 
 
+@pytest.mark.pixels
 def test_stepping_through_a_run_never_redraws_the_background(shown):
     model, view, renderer = shown
     before = renderer.full_draws
@@ -69,6 +70,7 @@ def test_stepping_through_a_run_never_redraws_the_background(shown):
     assert len(pictures) == len(range(0, N_STEPS, 10))  # and every step looks different
 
 
+@pytest.mark.pixels
 def test_the_background_is_redrawn_exactly_when_a_limit_moves(shown):
     model, view, renderer = shown
     same = moved = 0

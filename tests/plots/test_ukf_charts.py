@@ -23,6 +23,7 @@ def lines_of(ax, colour):
     return [line for line in ax.get_lines() if line.get_color() == colour]
 
 
+@pytest.mark.pixels
 @pytest.mark.fact
 def test_moments_chart_draws_the_samples_and_both_gaussians():
     y = np.random.default_rng(0).normal(2.0, 1.0, 50_000) ** 2
