@@ -58,20 +58,24 @@ restore:
 #     each numpy SIMD level below this CPU's (once as this CPU if there is none), with every noise
 #     draw scaled by 1 + 1e-12 (1 - 1e-12 in a second repeat: tests/rounding.py). What they state must hold.
 #     NPY_DISABLE_CPU_FEATURES="X86_V4 AVX512_ICL" make test: an AVX-512 CPU runs every pass as an AVX2 one;
-#  3. the browser suite.
+#  3. the browser suite, which waits on the page much of its time: the repeats run beside it, at a lower
+#     priority (nice 10), and their output follows the suite's (Ctrl-C stops both).
 # Each pass writes its timings to $(TIMES); the last line prints the 15 slowest tests of all.
 PYTEST   := $(BIN)/pytest -n 2 --dist loadfile --nbval-lax --nbval-current-env --nbval-cell-timeout=120
 TIMES    := .test-times
-REPEAT   := $(PYTEST) -m "fact and not slow and not browser" notebooks tests
 
 test: $(STAMP) lint $(AXE)
 	@rm -rf $(TIMES) && mkdir -p $(TIMES)
 	$(PYTEST) -m "not browser" --junitxml=$(TIMES)/1-main.xml notebooks tests
-	@$(BIN)/python -m tests.repeats | while IFS=';' read -r name off size; do \
-	  echo "NPY_DISABLE_CPU_FEATURES=\"$$off\" $(REPEAT) --perturb=$$size"; \
-	  NPY_DISABLE_CPU_FEATURES="$$off" $(REPEAT) --perturb=$$size --junitxml="$(TIMES)/2-repeat-$$name.xml" || exit 1; \
-	done
-	$(BIN)/pytest -m browser --junitxml=$(TIMES)/3-browser.xml tests/browser
+	@echo "The repeats (tests/repeats.py) run beside the browser suite; their output follows it."
+	@trap 'kill -- -$$repeats 2>/dev/null || kill $$repeats 2>/dev/null; exit 130' INT TERM; \
+	$(BIN)/python -m tests.repeats run $(TIMES) $(PYTEST) -m "fact and not slow and not browser" notebooks tests \
+	  > $(TIMES)/2-repeats.log 2>&1 & repeats=$$!; \
+	echo "$(BIN)/pytest -m browser tests/browser"; \
+	$(BIN)/pytest -m browser --junitxml=$(TIMES)/3-browser.xml tests/browser; browser=$$?; \
+	wait $$repeats; repeated=$$?; \
+	cat $(TIMES)/2-repeats.log; \
+	[ $$browser -eq 0 ] && [ $$repeated -eq 0 ]
 	@$(BIN)/python -m tests.slowest $(TIMES)
 
 # For every day: lint, the unit tests (not the facts of seeded runs, the slow or the browser ones: tests/facts.py),

@@ -1,9 +1,13 @@
-"""The repeats of the run-fact tests: each as another CPU's rounding, perturbed; one a line.
+"""The repeats of the run-fact tests: each as another CPU's rounding, perturbed.
 
-    python -m tests.repeats
+    python -m tests.repeats                              one a line: name;features;size
+    python -m tests.repeats run TIMES PYTEST ARGS...     run them, one after the other
 
 Each line is ``name;features;size``: run the repeat with ``NPY_DISABLE_CPU_FEATURES="features"``
-and ``pytest --perturb=size`` (``tests/rounding.py``), and call its report ``name``.
+and ``pytest --perturb=size`` (``tests/rounding.py``), and call its report ``name``.  ``run`` does
+that with the pytest command given, writing each report to ``TIMES/2-repeat-<name>.xml``, at a lower
+priority (nice 10) and in a process group of its own: ``make test`` runs it beside the browser
+suite and stops the whole group when it is interrupted.
 
 numpy picks its SIMD code paths at run time, by CPU, and another level rounds the last bit of a
 sine or an arctangent differently (``docs/development.md``).  A repeat runs as each level below
@@ -27,6 +31,9 @@ every kernel), and each repeat keeps those features off beside its own.
 from __future__ import annotations
 
 import os
+import shlex
+import subprocess
+import sys
 
 # numpy 2's x86 dispatch levels, lowest first; a level's extra features come with it.
 LEVELS = (
@@ -59,10 +66,26 @@ def repeats(features: dict[str, bool], disabled: str = "") -> list[tuple[str, st
     ]
 
 
+def run(times: str, pytest: list[str], planned: list[tuple[str, str, float]]) -> int:
+    """Run each planned repeat with the ``pytest`` command, one after the other; the first failure's code, or 0."""
+    os.setpgid(0, 0)  # a group of its own, which the caller can stop whole
+    os.nice(10)  # its pytest processes and their kernels yield the CPU to the browser suite beside it
+    for name, off, size in planned:
+        command = [*pytest, f"--perturb={size!r}", f"--junitxml={times}/2-repeat-{name}.xml"]
+        print(f'NPY_DISABLE_CPU_FEATURES="{off}" {shlex.join(command)}', flush=True)
+        code = subprocess.call(command, env={**os.environ, "NPY_DISABLE_CPU_FEATURES": off})
+        if code:
+            return code
+    return 0
+
+
 def main() -> None:
     from numpy._core._multiarray_umath import __cpu_features__
 
-    for name, off, size in repeats(__cpu_features__, os.environ.get("NPY_DISABLE_CPU_FEATURES", "")):
+    planned = repeats(__cpu_features__, os.environ.get("NPY_DISABLE_CPU_FEATURES", ""))
+    if sys.argv[1:2] == ["run"]:
+        sys.exit(run(sys.argv[2], sys.argv[3:], planned))
+    for name, off, size in planned:
         print(f"{name};{off};{size!r}")
 
 

@@ -128,3 +128,31 @@ def test_the_repeats_read_what_the_environment_turns_off():
     ).stdout.splitlines()
     assert lines and all(line.split(";")[1].split()[:2] == ["X86_V4", "AVX512_ICL"] for line in lines)
     assert not any(name == "X86_V3" for name, *_ in (line.split(";") for line in lines))  # no repeat as AVX2 itself
+
+
+# A stand-in for pytest: says how it was called and with which features off; fails when asked to.
+FAKE_PYTEST = (
+    "import os, sys; print('ran', os.environ['NPY_DISABLE_CPU_FEATURES'], os.nice(0), *sys.argv[1:]);"
+    " sys.exit(3 if 'fail' in sys.argv else 0)"
+)
+
+
+def test_run_makes_each_repeat_in_turn_at_a_lower_priority_and_stops_at_a_failure(tmp_path):
+    def run(*args: str) -> subprocess.CompletedProcess:
+        command = [sys.executable, "-m", "tests.repeats", "run", str(tmp_path), sys.executable, "-c", FAKE_PYTEST]
+        return subprocess.run([*command, *args], capture_output=True, text=True, cwd=ROOT)
+
+    planned = subprocess.run(
+        [sys.executable, "-m", "tests.repeats"], capture_output=True, text=True, check=True, cwd=ROOT
+    ).stdout.splitlines()
+    done = run("-m", "fact")
+    ran = [line.split() for line in done.stdout.splitlines() if line.startswith("ran ")]
+    assert done.returncode == 0 and len(ran) == len(planned), done.stdout + done.stderr
+    for said, line in zip(ran, planned, strict=True):
+        name, off, size = line.split(";")
+        assert said[1 : 1 + len(off.split())] == off.split()  # as that level
+        lower = str(min(os.nice(0) + 10, 19))  # nice 10 from here
+        tail = ["-m", "fact", f"--perturb={size}", f"--junitxml={tmp_path}/2-repeat-{name}.xml"]
+        assert said[1 + len(off.split()) :] == [lower, *tail]
+    failed = run("fail")
+    assert failed.returncode == 3 and failed.stdout.count("ran ") == 1  # the first failure ends the repeats
