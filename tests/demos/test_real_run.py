@@ -9,7 +9,9 @@ import asyncio
 import dataclasses
 import os
 import signal
+import subprocess
 import sys
+import time
 
 import numpy as np
 import pytest
@@ -412,6 +414,50 @@ def test_a_worker_process_that_dies_is_replaced():
         "under a run": "the EKF (Q ×10, scale estimated, gated) failed on this setting",
         "after it": (True, True),
     }
+
+
+# A process that starts the demo's worker, prints the worker's pid, and leaves at once by os._exit: as a kernel
+# killed outright, or a test process, leaves, with no word to its worker.
+LEAVES_ITS_WORKER = """
+import asyncio, os
+import kfcourse as kf
+
+async def main():
+    demo = kf.demos.real_run()
+    demo.controls["gate"].value = True  # a setting not run yet: the worker's first run
+    for _ in range(1200):
+        if demo.model.run is not None:
+            break
+        await asyncio.sleep(0.05)
+    print(*demo.model._worker._processes, flush=True)
+    os._exit(0)
+
+asyncio.run(main())
+"""
+
+
+def test_a_worker_process_ends_when_the_process_that_started_it_is_gone(tmp_path):
+    out = tmp_path / "out.txt"  # a file, not a pipe: a worker left behind would hold a pipe open
+    with out.open("w") as sink:
+        subprocess.run([sys.executable, "-c", LEAVES_ITS_WORKER], stdout=sink, stderr=subprocess.STDOUT, timeout=300)
+    workers = [int(word) for word in out.read_text().split() if word.isdigit()]
+    assert workers, out.read_text()
+
+    def alive(pid: int) -> bool:
+        try:
+            os.kill(pid, 0)
+        except ProcessLookupError:
+            return False
+        return True
+
+    for _ in range(300):  # each looks for its parent once a second
+        if not any(map(alive, workers)):
+            break
+        time.sleep(0.1)
+    left = [pid for pid in workers if alive(pid)]
+    for pid in left:
+        os.kill(pid, signal.SIGKILL)
+    assert left == []
 
 
 def test_a_run_that_fails_without_an_event_loop_is_said_not_raised(opened, monkeypatch):
