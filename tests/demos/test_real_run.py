@@ -14,6 +14,7 @@ import sys
 import time
 
 import numpy as np
+import psutil
 import pytest
 from matplotlib.patches import Rectangle
 
@@ -443,18 +444,17 @@ def test_a_worker_process_ends_when_the_process_that_started_it_is_gone(tmp_path
     workers = [int(word) for word in out.read_text().split() if word.isdigit()]
     assert workers, out.read_text()
 
-    def alive(pid: int) -> bool:
+    def running(pid: int) -> bool:  # an ended process not reaped yet (a zombie) has ended
         try:
-            os.kill(pid, 0)
-        except ProcessLookupError:
+            return psutil.Process(pid).status() != psutil.STATUS_ZOMBIE
+        except psutil.NoSuchProcess:
             return False
-        return True
 
     for _ in range(300):  # each looks for its parent once a second
-        if not any(map(alive, workers)):
+        if not any(map(running, workers)):
             break
         time.sleep(0.1)
-    left = [pid for pid in workers if alive(pid)]
+    left = [pid for pid in workers if running(pid)]
     for pid in left:
         os.kill(pid, signal.SIGKILL)
     assert left == []
