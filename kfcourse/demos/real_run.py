@@ -19,7 +19,6 @@ import multiprocessing
 import os
 import signal
 import threading
-import time
 import weakref
 from collections import OrderedDict
 from collections.abc import Callable
@@ -72,19 +71,18 @@ def _worker_started() -> None:
     """In the worker process, once: deaf to the kernel's interrupt, which reaches the kernel's whole process group
     (the run under way ends, and the worker stays for the next ones), and second to the kernel, the browser and
     the server on the CPU (a run in the background must not slow the pictures that answer the student); it ends
-    when the kernel is gone (:func:`_end_with`)."""
+    when the kernel is gone (:func:`_end_with_kernel`)."""
     signal.signal(signal.SIGINT, signal.SIG_IGN)
     if hasattr(os, "nice"):
         os.nice(10)
-    threading.Thread(target=_end_with, args=(os.getppid(),), daemon=True).start()
+    threading.Thread(target=_end_with_kernel, daemon=True).start()
 
 
-def _end_with(parent: int) -> None:
+def _end_with_kernel() -> None:
     """In the worker process: end it once the process that started it is gone.  A kernel that exits cleanly tells
     its worker to stop; one killed outright (or a test process that leaves by ``os._exit``) cannot, and the worker
     would wait for work for ever, holding its memory."""
-    while os.getppid() == parent:
-        time.sleep(1.0)
+    multiprocessing.parent_process().join()  # returns when the kernel's end of the pipe to this process closes
     os._exit(0)
 
 
